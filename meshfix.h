@@ -1,0 +1,1324 @@
+/* meshfix.h - v0.1.0 - triangle winding (face orientation) repair - MIT license, see end of file
+
+   Finds and repairs inconsistent triangle winding in indexed triangle meshes:
+   reports what is wrong (inspect), and flips the triangles that face the
+   wrong way (orient). C99 or C++, libc and libm only, no globals.
+
+   DO THIS in exactly one C or C++ file:
+
+       #define MESHFIX_IMPLEMENTATION
+       #include "meshfix.h"
+
+   and include "meshfix.h" without the define everywhere else.
+
+   QUICK START
+
+       meshfix_report report;
+       meshfix_result r = meshfix_orient(indices, indices, index_count,
+                                         positions, vertex_count, sizeof(float) * 3,
+                                         NULL, &report);
+       if (r != MESHFIX_OK)
+           printf("meshfix: %s\n", meshfix_result_string(r));
+       else
+           printf("flipped %u triangles\n", (unsigned)report.triangles_flipped);
+
+       assert(meshfix_check(indices, index_count, positions, vertex_count,
+                            sizeof(float) * 3, MESHFIX_REQUIRE_SOLID));
+
+   MESH CONVENTIONS
+   A mesh is a triangle list: index_count / 3 triangles of 32-bit indices into
+   a vertex array whose first 12 bytes per vertex are float x, y, z.
+   Front faces wind counter-clockwise (right-handed), so the face normal of
+   (a, b, c) is (b - a) x (c - a). An edge is an unordered vertex pair; it is
+   a boundary edge when one triangle uses it, manifold when two do and
+   non-manifold when three or more do. Two triangles are consistently wound
+   across a manifold edge when they traverse it in opposite directions; an
+   edge where some direction is used by two triangles is inconsistent (what
+   the glTF validator calls GEOMETRY_INCONSISTENT_WINDING; an edge of three
+   or more triangles is always inconsistent). A patch is a maximal set of
+   triangles connected through manifold edges; a component is a maximal set
+   connected through any shared edge. A patch is closed when each of its
+   edges is used by an even number of its own triangles. Triangles that
+   repeat a vertex index are degenerate: they are counted, take no part in
+   the topology and are never flipped. Flipping (a, b, c) writes (a, c, b):
+   the first (provoking) vertex stays first.
+
+   CONFIGURATION (define before including the implementation)
+       MESHFIX_API           extern   linkage of the public functions
+       MESHFIX_STATIC        -        makes every function static to the file
+       MESHFIX_MALLOC(s,u)   malloc   allocation with the allocator's user_data;
+       MESHFIX_FREE(p,u)     free     define both or neither
+       MESHFIX_ASSERT(x)     assert   internal invariants only, never input
+       MESHFIX_DEBUG         on when NDEBUG is not defined: extra invariant checks
+       MESHFIX_MEMSET, MESHFIX_MEMCPY, MESHFIX_SQRT   string.h / math.h
+
+   API
+       meshfix_orient        repair winding into a destination buffer (or report only)
+       meshfix_inspect       report topology and winding problems, never writes
+       meshfix_inspect_ex    the same with options (allocator, per-component output)
+       meshfix_check         one-line assertion for unit tests
+       meshfix_scratch_size  bytes of scratch memory a call needs at most
+       meshfix_result_string text of a result code
+
+   ALGORITHM (orient and inspect share stages 1-5)
+       1. validate: counts, pointers, stride, every index < vertex_count.
+       2. edges: two stable counting-sort passes group the 3 half-edges of
+          every triangle by undirected edge; manifold half-edges get their
+          mate, edges of 3+ triangles are linked into a ring.
+       3. patches: breadth-first flood fill across manifold edges from the
+          lowest unvisited triangle; each triangle gets its flip relative to
+          the patch seed (a neighbour traversing the shared edge in the same
+          direction must be flipped). A contradiction means the patch is
+          non-orientable (Moebius): the fill still orients it as far as its
+          spanning tree reaches and the remaining edges are reported.
+       4. components: union-find over the rings of non-manifold edges; a
+          patch is closed when it owns an even count of each ring.
+       5. policy: each patch is then turned as a whole:
+            SEED      keep the seed triangle as it is (the plain flood fill);
+            MAJORITY  the side that flips less triangle area (or fewer
+                      triangles without positions), so a patch with 90% of
+                      its triangles wrong does not come out inside-out;
+            OUTWARD   closed patches get positive signed volume; open ones
+                      use MAJORITY. Each closed shell faces out on its own:
+                      a cavity shell inside another is also turned outward
+                      (nesting needs the ray caster, not in this version);
+            AUTO      OUTWARD with positions, MAJORITY without.
+       6. write: copy indices to destination and swap the last two indices
+          of each flipped triangle.
+       Time O(index_count + vertex_count), no hashing, no comparison sort.
+       Memory: one block of meshfix_scratch_size(vertex_count, index_count)
+       bytes, about 34 bytes per triangle + 4 per vertex, freed before return.
+       References: the edge-map flood fill of the glTF winding auto-fix;
+       P. Borodin, G. Zachmann, R. Klein, "Consistent Normal Orientation for
+       Polygonal Meshes" (patches as the unit of orientation).
+
+   DETERMINISM & THREAD SAFETY
+   The output depends only on the inputs and options: counting sorts with
+   index tie-breaks, BFS in index order, no hash iteration, no qsort. Sums
+   are accumulated in double in a fixed order. Compilers that contract to
+   FMA or use x87 precision can change decisions whose margin is within
+   rounding (a patch whose two sides have equal area). There are no mutable
+   statics: concurrent calls on different meshes are safe with no setup.
+
+   ERRORS
+   Every function returns a meshfix_result; data problems are results, never
+   asserts. On any error nothing the caller passed is written (destination,
+   report, options outputs), and everything allocated is freed.
+
+   LIMITATIONS / DOES NOT
+   - weld vertices: triangles connect only through shared indices;
+   - orient across T-junctions, gaps or non-manifold edges (each patch is
+     decided on its own there);
+   - fill holes, remove degenerate or duplicate triangles, or change the
+     triangle order or count;
+   - detect nested shells (cavities) yet: OUTWARD faces every closed shell out.
+   - index_count is limited to 2^31 - 1.
+
+   VERSION HISTORY
+       0.1.0  first release: inspect, flood fill with seed / majority /
+              outward / auto policies, check, scratch-size query.
+*/
+#ifndef MESHFIX_H
+#define MESHFIX_H
+
+#include <stddef.h>
+
+#define MESHFIX_VERSION_MAJOR 0
+#define MESHFIX_VERSION_MINOR 1
+#define MESHFIX_VERSION_PATCH 0
+#define MESHFIX_VERSION (MESHFIX_VERSION_MAJOR * 10000 + MESHFIX_VERSION_MINOR * 100 + MESHFIX_VERSION_PATCH)
+
+#ifndef MESHFIX_API
+#ifdef MESHFIX_STATIC
+#if defined(__GNUC__) || defined(__clang__)
+#define MESHFIX_API static __attribute__((unused))
+#else
+#define MESHFIX_API static
+#endif
+#else
+#define MESHFIX_API extern
+#endif
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Result codes and their text, from one list. */
+#define MESHFIX_RESULT_LIST(X) \
+    X(MESHFIX_OK, "ok") \
+    X(MESHFIX_ERROR_INVALID_ARGUMENT, "invalid argument: NULL pointer with a non-zero count, bad stride or unknown option value") \
+    X(MESHFIX_ERROR_NOT_TRIANGLES, "index count is not a multiple of 3") \
+    X(MESHFIX_ERROR_INDEX_OUT_OF_RANGE, "an index is not less than vertex_count") \
+    X(MESHFIX_ERROR_TOO_LARGE, "too large: index_count above 2^31-1, vertex_count above 2^32 or a size that overflows") \
+    X(MESHFIX_ERROR_POSITIONS_REQUIRED, "the chosen policy needs vertex positions") \
+    X(MESHFIX_ERROR_SCRATCH_TOO_SMALL, "options.scratch is smaller than meshfix_scratch_size()") \
+    X(MESHFIX_ERROR_OUT_OF_MEMORY, "out of memory")
+
+#define MESHFIX__RESULT_ENUM(name, text) name,
+typedef enum meshfix_result {
+    MESHFIX_RESULT_LIST(MESHFIX__RESULT_ENUM)
+    MESHFIX_RESULT_COUNT
+} meshfix_result;
+#undef MESHFIX__RESULT_ENUM
+
+/* Which way each consistently wound patch ends up facing. */
+typedef enum meshfix_policy {
+    MESHFIX_POLICY_AUTO = 0, /* OUTWARD with positions, MAJORITY without */
+    MESHFIX_POLICY_SEED,     /* the patch's lowest triangle keeps its winding */
+    MESHFIX_POLICY_MAJORITY, /* the side that flips less area (or fewer triangles) */
+    MESHFIX_POLICY_OUTWARD,  /* closed patches by signed volume, open ones by MAJORITY */
+    MESHFIX_POLICY_COUNT
+} meshfix_policy;
+
+typedef struct meshfix_allocator {
+    void *(*alloc_fn)(size_t size, void *user_data);
+    void (*free_fn)(void *ptr, void *user_data);
+    void *user_data;
+} meshfix_allocator;
+
+/* Per-component facts, filled by meshfix_orient / meshfix_inspect_ex when
+   options.components is set. Components are numbered by their lowest triangle. */
+typedef struct meshfix_component {
+    size_t first_triangle;
+    size_t triangles;          /* degenerate triangles belong to no component */
+    size_t vertices;           /* distinct vertices used by its triangles */
+    size_t edges;
+    size_t edges_boundary;
+    size_t edges_non_manifold;
+    size_t patches;
+    long euler_characteristic; /* vertices - edges + triangles; 2 for a sphere */
+    int closed;                /* 1 when every edge is shared by exactly two of its triangles */
+    int orientable;            /* 0 when a patch of it is non-orientable (Moebius, Klein) */
+    double area;               /* 0 without positions */
+    double signed_volume;      /* over its closed orientable patches, as returned */
+} meshfix_component;
+
+/* All fields zero = defaults; a NULL options pointer = all defaults. */
+typedef struct meshfix_options {
+    meshfix_policy policy;         /* default MESHFIX_POLICY_AUTO */
+    meshfix_allocator allocator;   /* alloc_fn NULL = MESHFIX_MALLOC / MESHFIX_FREE */
+    void *scratch;                 /* caller memory of scratch_size bytes: no allocation at all */
+    size_t scratch_size;
+    unsigned char *flipped;        /* optional out: index_count / 3 flags, 1 = flipped */
+    unsigned int *patch_ids;       /* optional out: index_count / 3 patch ids, 0xFFFFFFFF = degenerate */
+    meshfix_component *components; /* optional out: the first components_capacity components */
+    size_t components_capacity;
+} meshfix_options;
+
+/* What a call found. For meshfix_orient it describes the mesh as returned
+   (edges_inconsistent is what is left after repair); for inspect, the input. */
+typedef struct meshfix_report {
+    size_t triangles;
+    size_t triangles_degenerate;  /* a vertex index repeats: excluded, never flipped */
+    size_t triangles_zero_area;   /* with positions: zero or non-finite area */
+    size_t triangles_duplicate;   /* same three vertices as a lower triangle, any order */
+    size_t triangles_flipped;     /* orient only */
+    size_t vertices_used;
+    size_t vertices_non_finite;   /* used vertices with a NaN or infinite coordinate */
+    size_t edges;
+    size_t edges_boundary;        /* 1 triangle */
+    size_t edges_manifold;        /* 2 triangles */
+    size_t edges_non_manifold;    /* 3 or more triangles */
+    size_t edges_inconsistent;    /* a direction used by 2+ triangles */
+    size_t edges_inconsistent_input; /* the same count before repair */
+    size_t patches;
+    size_t patches_closed;
+    size_t patches_inside_out;    /* closed orientable patches with negative signed volume */
+    size_t components;
+    size_t components_closed;     /* every edge manifold */
+    size_t components_non_orientable;
+    long euler_characteristic;    /* sum over components of V - E + F */
+    double area;                  /* 0 without positions */
+    double signed_volume;         /* over closed orientable patches; 0 without positions */
+} meshfix_report;
+
+/* meshfix_check requirements; 0 means MESHFIX_REQUIRE_CONSISTENT. */
+#define MESHFIX_REQUIRE_CONSISTENT   1u  /* no edge with a direction used twice */
+#define MESHFIX_REQUIRE_CLOSED       2u  /* no boundary edge */
+#define MESHFIX_REQUIRE_MANIFOLD     4u  /* no edge of 3+ triangles */
+#define MESHFIX_REQUIRE_OUTWARD      8u  /* no closed patch inside-out (needs positions) */
+#define MESHFIX_REQUIRE_NO_DEGENERATE 16u /* no repeated index, zero area or duplicate triangle */
+#define MESHFIX_REQUIRE_SOLID        31u /* all of the above */
+
+/* Repair winding.
+   Makes every orientable patch consistently wound and turns each patch to
+   the side its policy chooses. Triangle order and count are preserved; a
+   flipped triangle (a, b, c) becomes (a, c, b). A mesh already wound the
+   chosen way comes back unchanged with report->triangles_flipped == 0.
+   Returns MESHFIX_OK or an error; on error nothing is written.
+
+   destination receives index_count indices; may equal indices; may be NULL
+   to get only the report and the options outputs.
+   indices may be NULL only when index_count is 0.
+   vertex_positions may be NULL for SEED, MAJORITY and AUTO (counts instead
+   of areas); otherwise vertex_count vertices of vertex_positions_stride
+   bytes (a multiple of 4, at least 12), x y z floats first.
+   options and report can be NULL. */
+MESHFIX_API meshfix_result meshfix_orient(unsigned int *destination,
+                                          const unsigned int *indices, size_t index_count,
+                                          const float *vertex_positions, size_t vertex_count,
+                                          size_t vertex_positions_stride,
+                                          const meshfix_options *options,
+                                          meshfix_report *report);
+
+/* Inspect without writing anything but the report.
+   Returns MESHFIX_OK or an error (then report is untouched).
+   Arguments as for meshfix_orient; report must not be NULL. */
+MESHFIX_API meshfix_result meshfix_inspect(const unsigned int *indices, size_t index_count,
+                                           const float *vertex_positions, size_t vertex_count,
+                                           size_t vertex_positions_stride,
+                                           meshfix_report *report);
+
+/* meshfix_inspect with options: allocator, scratch, patch_ids and
+   components are used; policy and flipped are ignored. */
+MESHFIX_API meshfix_result meshfix_inspect_ex(const unsigned int *indices, size_t index_count,
+                                              const float *vertex_positions, size_t vertex_count,
+                                              size_t vertex_positions_stride,
+                                              const meshfix_options *options,
+                                              meshfix_report *report);
+
+/* One-line assertion for unit tests.
+   Returns 1 when the mesh is valid input and meets every MESHFIX_REQUIRE_*
+   bit of requirements (0 = MESHFIX_REQUIRE_CONSISTENT), else 0.
+   vertex_positions can be NULL unless OUTWARD or NO_DEGENERATE is asked. */
+MESHFIX_API int meshfix_check(const unsigned int *indices, size_t index_count,
+                              const float *vertex_positions, size_t vertex_count,
+                              size_t vertex_positions_stride, unsigned int requirements);
+
+/* Scratch bytes that any call on a mesh of these counts needs at most.
+   Returns 0 when the counts are too large (the call would return
+   MESHFIX_ERROR_TOO_LARGE) or index_count is 0 (no scratch needed). */
+MESHFIX_API size_t meshfix_scratch_size(size_t vertex_count, size_t index_count);
+
+/* Returns a static, never NULL, English text for a result code. */
+MESHFIX_API const char *meshfix_result_string(meshfix_result result);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* MESHFIX_H */
+
+/* ---- stop reading here if you only want the API ---- */
+
+#if defined(__INTELLISENSE__) || defined(__CDT_PARSER__)
+#define MESHFIX_IMPLEMENTATION
+#endif
+
+#ifdef MESHFIX_IMPLEMENTATION
+#ifndef MESHFIX_IMPLEMENTATION_INCLUDED
+#define MESHFIX_IMPLEMENTATION_INCLUDED
+
+/* ===== >>config ===== */
+
+#if defined(MESHFIX_MALLOC) != defined(MESHFIX_FREE)
+#error "define both MESHFIX_MALLOC and MESHFIX_FREE, or neither"
+#endif
+#ifndef MESHFIX_MALLOC
+#include <stdlib.h>
+#define MESHFIX_MALLOC(size, user) ((void)(user), malloc(size))
+#define MESHFIX_FREE(ptr, user) ((void)(user), free(ptr))
+#endif
+#ifndef MESHFIX_ASSERT
+#include <assert.h>
+#define MESHFIX_ASSERT(x) assert(x)
+#endif
+#if !defined(MESHFIX_MEMSET) || !defined(MESHFIX_MEMCPY)
+#include <string.h>
+#endif
+#ifndef MESHFIX_MEMSET
+#define MESHFIX_MEMSET(dst, value, size) memset((dst), (value), (size))
+#endif
+#ifndef MESHFIX_MEMCPY
+#define MESHFIX_MEMCPY(dst, src, size) memcpy((dst), (src), (size))
+#endif
+#ifndef MESHFIX_SQRT
+#include <math.h>
+#define MESHFIX_SQRT(x) sqrt(x)
+#endif
+#if !defined(MESHFIX_DEBUG) && !defined(NDEBUG)
+#define MESHFIX_DEBUG 1
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define MESHFIX__PRIVATE static __attribute__((unused))
+#else
+#define MESHFIX__PRIVATE static
+#endif
+
+/* Half-edge h = 3 * triangle + corner runs from indices[h] to the next
+   corner. mate[h] holds the other half-edge of a manifold edge, NONE on a
+   boundary, or the next member of a non-manifold edge's ring with RING set. */
+#define MESHFIX__NONE 0xFFFFFFFFu
+#define MESHFIX__RING 0x80000000u
+#define MESHFIX__MAX_INDEX_COUNT ((size_t)0x7FFFFFFF)
+#define MESHFIX__MAX_VERTEX_COUNT ((size_t)0xFFFFFFFFu)
+
+/* triangle bits */
+#define MESHFIX__TRI_RELATIVE   1u /* flipped relative to its patch seed */
+#define MESHFIX__TRI_DEGENERATE 2u
+#define MESHFIX__TRI_FLIP       4u /* final decision */
+/* patch bits */
+#define MESHFIX__PATCH_OPEN           1u /* a boundary edge or an odd share of a ring */
+#define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
+#define MESHFIX__PATCH_NON_ORIENTABLE 4u
+#define MESHFIX__PATCH_PARITY         8u /* scratch bit while walking a ring */
+#define MESHFIX__PATCH_FLIP          16u
+
+typedef char meshfix__unsigned_int_is_32_bits[sizeof(unsigned int) == 4 ? 1 : -1];
+
+/* ===== >>memory ===== */
+
+typedef struct meshfix__plan {
+    size_t mate, sorted, tri_bits, vertex_work, patch_start, patch_link, patch_bits;
+    size_t total;
+} meshfix__plan;
+
+MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t element_size, size_t *offset)
+{
+    size_t bytes, aligned = (*total + 15u) & ~(size_t)15u;
+    if (aligned < *total || (element_size != 0 && count > ((size_t)-1) / element_size))
+        return 0;
+    bytes = count * element_size;
+    if (aligned + bytes < aligned)
+        return 0;
+    *offset = aligned;
+    *total = aligned + bytes;
+    return 1;
+}
+
+/* One block holds every array. The sort buffer `sorted` is reused by the
+   flood fill for its queue and patch ids (8 of its 12 bytes per triangle),
+   and `mate` is reused at the end to group patches by component. */
+MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count)
+{
+    size_t total = 0, half_edges;
+    if (triangle_count > MESHFIX__MAX_INDEX_COUNT / 3 || vertex_range > MESHFIX__MAX_VERTEX_COUNT)
+        return 0;
+    half_edges = triangle_count * 3;
+    return meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
+           meshfix__add_size(&total, half_edges + 16, 4, &plan->sorted) &&
+           meshfix__add_size(&total, triangle_count, 1, &plan->tri_bits) &&
+           meshfix__add_size(&total, vertex_range + 1, 4, &plan->vertex_work) &&
+           meshfix__add_size(&total, triangle_count + 1, 4, &plan->patch_start) &&
+           meshfix__add_size(&total, triangle_count, 4, &plan->patch_link) &&
+           meshfix__add_size(&total, triangle_count, 1, &plan->patch_bits) &&
+           meshfix__add_size(&total, 0, 1, &plan->total) && (plan->total = total + 16) > total;
+}
+
+/* ===== >>validate ===== */
+
+typedef struct meshfix__mesh {
+    const unsigned int *indices;
+    size_t triangle_count;
+    size_t vertex_range;          /* highest index + 1 */
+    const char *positions;        /* NULL when not given */
+    size_t stride;
+    unsigned int *mate;           /* 3 per triangle */
+    unsigned int *sorted;         /* 3 per triangle, during edge building */
+    unsigned int *queue;          /* triangles in patch order (inside `sorted`) */
+    unsigned int *tri_patch;      /* (inside `sorted`) */
+    unsigned char *tri_bits;
+    unsigned int *vertex_work;    /* sort counts, then vertex marks */
+    unsigned int *patch_start;    /* patch p owns queue[patch_start[p] .. patch_start[p + 1]) */
+    unsigned int *patch_link;     /* union-find parent, then component id */
+    unsigned char *patch_bits;
+    unsigned char *component_bits; /* (inside `sorted`, after tri_patch) */
+    size_t patch_count;
+    size_t component_count;
+} meshfix__mesh;
+
+MESHFIX__PRIVATE meshfix_result meshfix__validate(const unsigned int *indices, size_t index_count,
+                                                  const float *positions, size_t vertex_count,
+                                                  size_t stride, size_t *vertex_range)
+{
+    size_t i;
+    unsigned int highest = 0;
+    if (index_count % 3 != 0)
+        return MESHFIX_ERROR_NOT_TRIANGLES;
+    if (index_count > MESHFIX__MAX_INDEX_COUNT || vertex_count > MESHFIX__MAX_VERTEX_COUNT)
+        return MESHFIX_ERROR_TOO_LARGE;
+    if (index_count != 0 && indices == NULL)
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
+    if (positions != NULL && (stride < 3 * sizeof(float) || stride % sizeof(float) != 0))
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
+    if (positions != NULL && vertex_count > 0 && (vertex_count - 1) > ((size_t)-1) / stride)
+        return MESHFIX_ERROR_TOO_LARGE;
+    for (i = 0; i < index_count; ++i)
+        highest = indices[i] > highest ? indices[i] : highest;
+    if (index_count != 0 && (size_t)highest >= vertex_count)
+        return MESHFIX_ERROR_INDEX_OUT_OF_RANGE;
+    *vertex_range = index_count != 0 ? (size_t)highest + 1 : 0;
+    return MESHFIX_OK;
+}
+
+MESHFIX__PRIVATE const float *meshfix__position(const meshfix__mesh *m, unsigned int vertex)
+{
+    return (const float *)(const void *)(m->positions + (size_t)vertex * m->stride);
+}
+
+MESHFIX__PRIVATE int meshfix__is_finite(float x)
+{
+    return (x - x) == 0.0f; /* NaN and infinities give NaN */
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__next_half_edge(unsigned int h)
+{
+    return h % 3 == 2 ? h - 2 : h + 1;
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__edge_low(const meshfix__mesh *m, unsigned int h)
+{
+    unsigned int a = m->indices[h], b = m->indices[meshfix__next_half_edge(h)];
+    return a < b ? a : b;
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__edge_high(const meshfix__mesh *m, unsigned int h)
+{
+    unsigned int a = m->indices[h], b = m->indices[meshfix__next_half_edge(h)];
+    return a < b ? b : a;
+}
+
+MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
+{
+    size_t t, count = 0;
+    for (t = 0; t < m->triangle_count; ++t) {
+        const unsigned int *v = m->indices + 3 * t;
+        int degenerate = v[0] == v[1] || v[1] == v[2] || v[0] == v[2];
+        m->tri_bits[t] = (unsigned char)(degenerate ? MESHFIX__TRI_DEGENERATE : 0);
+        count += (size_t)degenerate;
+    }
+    return count;
+}
+
+/* ===== >>sort ===== */
+
+/* Stable counting sort of `count` items by key(item) in [0, range). With
+   items == NULL the items are the half-edges of the non-degenerate triangles
+   in increasing order, so every later tie is broken by half-edge index. */
+typedef unsigned int (*meshfix__key_fn)(const meshfix__mesh *m, unsigned int item);
+
+MESHFIX__PRIVATE void meshfix__counting_sort(const meshfix__mesh *m, unsigned int *out,
+                                             const unsigned int *items, size_t count,
+                                             meshfix__key_fn key, size_t range)
+{
+    unsigned int *offsets = m->vertex_work, sum = 0, h;
+    size_t i, t;
+    MESHFIX_MEMSET(offsets, 0, (range + 1) * sizeof(unsigned int));
+    if (items != NULL) {
+        for (i = 0; i < count; ++i)
+            offsets[key(m, items[i])]++;
+    } else {
+        for (t = 0; t < m->triangle_count; ++t)
+            if (!(m->tri_bits[t] & MESHFIX__TRI_DEGENERATE))
+                for (h = (unsigned int)(3 * t); h < 3 * t + 3; ++h)
+                    offsets[key(m, h)]++;
+    }
+    for (i = 0; i <= range; ++i) {
+        unsigned int c = offsets[i];
+        offsets[i] = sum;
+        sum += c;
+    }
+    if (items != NULL) {
+        for (i = 0; i < count; ++i)
+            out[offsets[key(m, items[i])]++] = items[i];
+    } else {
+        for (t = 0; t < m->triangle_count; ++t)
+            if (!(m->tri_bits[t] & MESHFIX__TRI_DEGENERATE))
+                for (h = (unsigned int)(3 * t); h < 3 * t + 3; ++h)
+                    out[offsets[key(m, h)]++] = h;
+    }
+}
+
+/* ===== >>duplicates ===== */
+
+/* Triangle keys: its vertices sorted, lowest / middle / highest. */
+MESHFIX__PRIVATE void meshfix__sorted_triangle(const meshfix__mesh *m, unsigned int t, unsigned int s[3])
+{
+    unsigned int a = m->indices[3 * t], b = m->indices[3 * t + 1], c = m->indices[3 * t + 2], x;
+    if (a > b) { x = a; a = b; b = x; }
+    if (b > c) { x = b; b = c; c = x; }
+    if (a > b) { x = a; a = b; b = x; }
+    s[0] = a; s[1] = b; s[2] = c;
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__triangle_low(const meshfix__mesh *m, unsigned int t)
+{
+    unsigned int s[3];
+    meshfix__sorted_triangle(m, t, s);
+    return s[0];
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__triangle_middle(const meshfix__mesh *m, unsigned int t)
+{
+    unsigned int s[3];
+    meshfix__sorted_triangle(m, t, s);
+    return s[1];
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__triangle_high(const meshfix__mesh *m, unsigned int t)
+{
+    unsigned int s[3];
+    meshfix__sorted_triangle(m, t, s);
+    return s[2];
+}
+
+/* Three radix passes order the triangles by vertex set; equal neighbours
+   in that order are duplicates. Uses the `sorted` buffer as two arrays. */
+MESHFIX__PRIVATE size_t meshfix__count_duplicates(meshfix__mesh *m)
+{
+    unsigned int *a = m->sorted, *b = m->sorted + m->triangle_count;
+    size_t t, n = 0, duplicates = 0;
+    for (t = 0; t < m->triangle_count; ++t)
+        if (!(m->tri_bits[t] & MESHFIX__TRI_DEGENERATE))
+            a[n++] = (unsigned int)t;
+    meshfix__counting_sort(m, b, a, n, meshfix__triangle_high, m->vertex_range);
+    meshfix__counting_sort(m, a, b, n, meshfix__triangle_middle, m->vertex_range);
+    meshfix__counting_sort(m, b, a, n, meshfix__triangle_low, m->vertex_range);
+    for (t = 1; t < n; ++t) {
+        unsigned int p[3], q[3];
+        meshfix__sorted_triangle(m, b[t - 1], p);
+        meshfix__sorted_triangle(m, b[t], q);
+        duplicates += (size_t)(p[0] == q[0] && p[1] == q[1] && p[2] == q[2]);
+    }
+    return duplicates;
+}
+
+/* ===== >>edges ===== */
+
+typedef struct meshfix__edge_counts {
+    size_t edges, boundary, manifold, non_manifold;
+} meshfix__edge_counts;
+
+/* Groups half-edges by undirected edge (sorted by high vertex, then
+   stably by low vertex) and links each group: mate pairs, rings, NONE. */
+MESHFIX__PRIVATE void meshfix__build_edges(meshfix__mesh *m, meshfix__edge_counts *counts)
+{
+    unsigned int *by_high = m->mate, *sorted = m->sorted;
+    size_t n = 0, t, i, j;
+    for (t = 0; t < m->triangle_count; ++t)
+        n += (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE) ? 0 : 3;
+    meshfix__counting_sort(m, by_high, NULL, n, meshfix__edge_high, m->vertex_range);
+    meshfix__counting_sort(m, sorted, by_high, n, meshfix__edge_low, m->vertex_range);
+    MESHFIX_MEMSET(m->mate, 0xFF, 3 * m->triangle_count * sizeof(unsigned int));
+    MESHFIX_MEMSET(counts, 0, sizeof(*counts));
+    for (i = 0; i < n; i = j) {
+        unsigned int low = meshfix__edge_low(m, sorted[i]), high = meshfix__edge_high(m, sorted[i]);
+        for (j = i + 1; j < n && meshfix__edge_low(m, sorted[j]) == low &&
+                        meshfix__edge_high(m, sorted[j]) == high; ++j) {
+        }
+        counts->edges++;
+        if (j - i == 1) {
+            counts->boundary++;
+        } else if (j - i == 2) {
+            counts->manifold++;
+            m->mate[sorted[i]] = sorted[i + 1];
+            m->mate[sorted[i + 1]] = sorted[i];
+        } else {
+            size_t k;
+            counts->non_manifold++;
+            for (k = i; k < j; ++k)
+                m->mate[sorted[k]] = (k + 1 < j ? sorted[k + 1] : sorted[i]) | MESHFIX__RING;
+        }
+    }
+}
+
+MESHFIX__PRIVATE int meshfix__is_mate(unsigned int link)
+{
+    return !(link & MESHFIX__RING);
+}
+
+MESHFIX__PRIVATE int meshfix__is_ring(unsigned int link)
+{
+    return link != MESHFIX__NONE && (link & MESHFIX__RING);
+}
+
+/* Members of a ring are linked in increasing order, so the member whose
+   successor is smaller is the last one: each ring is visited once from it. */
+MESHFIX__PRIVATE int meshfix__is_ring_last(const meshfix__mesh *m, unsigned int h)
+{
+    unsigned int link = m->mate[h];
+    return meshfix__is_ring(link) && (link & ~MESHFIX__RING) < h;
+}
+
+MESHFIX__PRIVATE int meshfix__same_direction(const meshfix__mesh *m, unsigned int h, unsigned int g)
+{
+    return m->indices[h] == m->indices[g];
+}
+
+/* ===== >>patches ===== */
+
+/* Breadth-first flood fill across manifold edges. The seed of each patch is
+   its lowest triangle; a neighbour that runs the shared edge the same way
+   gets the opposite relative flip. */
+MESHFIX__PRIVATE void meshfix__flood_patches(meshfix__mesh *m)
+{
+    size_t seed, head = 0, tail = 0;
+    unsigned int patch = 0;
+    for (seed = 0; seed < m->triangle_count; ++seed)
+        m->tri_patch[seed] = MESHFIX__NONE;
+    for (seed = 0; seed < m->triangle_count; ++seed) {
+        if (m->tri_patch[seed] != MESHFIX__NONE || (m->tri_bits[seed] & MESHFIX__TRI_DEGENERATE))
+            continue;
+        m->patch_start[patch] = (unsigned int)tail;
+        m->patch_bits[patch] = 0;
+        m->tri_patch[seed] = patch;
+        m->queue[tail++] = (unsigned int)seed;
+        while (head < tail) {
+            unsigned int t = m->queue[head++], h;
+            unsigned int relative = m->tri_bits[t] & MESHFIX__TRI_RELATIVE;
+            for (h = 3 * t; h < 3 * t + 3; ++h) {
+                unsigned int g = m->mate[h], u, wanted;
+                if (!meshfix__is_mate(g)) {
+                    m->patch_bits[patch] |= MESHFIX__PATCH_NOT_MANIFOLD;
+                    if (g == MESHFIX__NONE)
+                        m->patch_bits[patch] |= MESHFIX__PATCH_OPEN;
+                    continue;
+                }
+                u = g / 3;
+                wanted = relative ^ (unsigned int)meshfix__same_direction(m, h, g);
+                if (m->tri_patch[u] == MESHFIX__NONE) {
+                    m->tri_patch[u] = patch;
+                    m->tri_bits[u] = (unsigned char)((m->tri_bits[u] & ~MESHFIX__TRI_RELATIVE) | wanted);
+                    m->queue[tail++] = u;
+                } else if ((m->tri_bits[u] & MESHFIX__TRI_RELATIVE) != wanted) {
+                    m->patch_bits[patch] |= MESHFIX__PATCH_NON_ORIENTABLE;
+                }
+            }
+        }
+        patch++;
+    }
+    m->patch_start[patch] = (unsigned int)tail;
+    m->patch_count = patch;
+}
+
+/* ===== >>components ===== */
+
+MESHFIX__PRIVATE unsigned int meshfix__find_root(unsigned int *parent, unsigned int p)
+{
+    while (parent[p] != p) {
+        parent[p] = parent[parent[p]];
+        p = parent[p];
+    }
+    return p;
+}
+
+MESHFIX__PRIVATE void meshfix__unite(unsigned int *parent, unsigned int a, unsigned int b)
+{
+    a = meshfix__find_root(parent, a);
+    b = meshfix__find_root(parent, b);
+    if (a < b)
+        parent[b] = a;
+    else if (b < a)
+        parent[a] = b;
+}
+
+/* A patch that owns an odd number of a ring's half-edges has an unmatched
+   side there: it is open. Two passes over the ring with a parity bit. */
+MESHFIX__PRIVATE void meshfix__walk_ring(meshfix__mesh *m, unsigned int last)
+{
+    unsigned int first = m->mate[last] & ~MESHFIX__RING, h = first;
+    unsigned int first_patch = m->tri_patch[first / 3];
+    for (;;) {
+        unsigned int p = m->tri_patch[h / 3];
+        m->patch_bits[p] ^= MESHFIX__PATCH_PARITY;
+        meshfix__unite(m->patch_link, first_patch, p);
+        if (h == last)
+            break;
+        h = m->mate[h] & ~MESHFIX__RING;
+    }
+    for (h = first;; h = m->mate[h] & ~MESHFIX__RING) {
+        unsigned int p = m->tri_patch[h / 3];
+        if (m->patch_bits[p] & MESHFIX__PATCH_PARITY)
+            m->patch_bits[p] = (unsigned char)((m->patch_bits[p] & ~MESHFIX__PATCH_PARITY) | MESHFIX__PATCH_OPEN);
+        if (h == last)
+            break;
+    }
+}
+
+/* Joins patches that share non-manifold edges into components, numbered by
+   their lowest patch; afterwards patch_link[p] is p's component id. */
+MESHFIX__PRIVATE void meshfix__join_components(meshfix__mesh *m)
+{
+    unsigned int p, h, count = 0, half_edges = (unsigned int)(3 * m->triangle_count);
+    for (p = 0; p < m->patch_count; ++p)
+        m->patch_link[p] = p;
+    for (h = 0; h < half_edges; ++h)
+        if (meshfix__is_ring_last(m, h))
+            meshfix__walk_ring(m, h);
+    for (p = 0; p < m->patch_count; ++p) {
+        unsigned int root = meshfix__find_root(m->patch_link, p);
+        m->patch_link[p] = root == p ? count++ : m->patch_link[root];
+    }
+    m->component_count = count;
+}
+
+/* ===== >>orient ===== */
+
+/* What a patch's triangles add up to, in two frames: as given, and as the
+   flood fill made them consistent ("relative": each one flipped by its
+   relative bit). Volumes are taken about the patch's first vertex. */
+typedef struct meshfix__patch_sums {
+    double weight_kept;     /* weight of triangles with relative bit 0 */
+    double weight_reversed; /* weight of triangles with relative bit 1 */
+    double area;
+    double volume_given;
+    double volume_relative;
+    size_t zero_area;
+} meshfix__patch_sums;
+
+MESHFIX__PRIVATE int meshfix__load_triangle(const meshfix__mesh *m, unsigned int t, double p[3][3])
+{
+    int corner, axis, finite = 1;
+    for (corner = 0; corner < 3; ++corner) {
+        const float *v = meshfix__position(m, m->indices[3 * t + (unsigned int)corner]);
+        for (axis = 0; axis < 3; ++axis) {
+            finite &= meshfix__is_finite(v[axis]);
+            p[corner][axis] = (double)v[axis];
+        }
+    }
+    return finite;
+}
+
+MESHFIX__PRIVATE void meshfix__sum_patch(const meshfix__mesh *m, unsigned int patch, meshfix__patch_sums *s)
+{
+    unsigned int i, end = m->patch_start[patch + 1];
+    double origin[3] = {0, 0, 0};
+    MESHFIX_MEMSET(s, 0, sizeof(*s));
+    if (m->positions != NULL) {
+        const float *o = meshfix__position(m, m->indices[3 * m->queue[m->patch_start[patch]]]);
+        origin[0] = o[0]; origin[1] = o[1]; origin[2] = o[2];
+    }
+    for (i = m->patch_start[patch]; i < end; ++i) {
+        unsigned int t = m->queue[i];
+        double weight = 1.0, volume = 0.0, p[3][3];
+        if (m->positions != NULL) {
+            double a[3], b[3], c[3], n[3], area;
+            int k;
+            int finite = meshfix__load_triangle(m, t, p);
+            for (k = 0; k < 3; ++k) {
+                a[k] = p[0][k] - origin[k];
+                b[k] = p[1][k] - origin[k];
+                c[k] = p[2][k] - origin[k];
+            }
+            n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+            n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+            n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+            area = finite ? 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) : 0.0;
+            if (area > 0.0)
+                volume = (a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+                          a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+            s->zero_area += (size_t)!(area > 0.0);
+            s->area += area;
+            weight = area;
+        }
+        s->volume_given += volume;
+        if (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) {
+            s->weight_reversed += weight;
+            s->volume_relative -= volume;
+        } else {
+            s->weight_kept += weight;
+            s->volume_relative += volume;
+        }
+    }
+}
+
+/* A volume this small next to the patch's area is flat (a two-sided sheet
+   closed on itself): its sign says nothing, so it is not used. */
+MESHFIX__PRIVATE int meshfix__volume_is_meaningful(double volume, double area)
+{
+    double magnitude = volume < 0 ? -volume : volume;
+    return area > 0.0 && magnitude > 1e-9 * area * MESHFIX_SQRT(area);
+}
+
+MESHFIX__PRIVATE int meshfix__is_closed_orientable(const meshfix__mesh *m, unsigned int patch)
+{
+    return !(m->patch_bits[patch] & (MESHFIX__PATCH_OPEN | MESHFIX__PATCH_NON_ORIENTABLE));
+}
+
+/* Returns 1 when the patch should be turned over (relative to its seed). */
+MESHFIX__PRIVATE int meshfix__decide_patch(const meshfix__mesh *m, unsigned int patch,
+                                          meshfix_policy policy, const meshfix__patch_sums *s)
+{
+    if (policy == MESHFIX_POLICY_SEED)
+        return 0;
+    if (policy == MESHFIX_POLICY_OUTWARD && meshfix__is_closed_orientable(m, patch) &&
+        meshfix__volume_is_meaningful(s->volume_relative, s->area))
+        return s->volume_relative < 0.0;
+    /* MAJORITY: turning the patch flips the kept triangles instead of the
+       reversed ones; keep the seed side on a tie. Areas that are all zero
+       fall back to counting triangles. */
+    if (s->weight_kept + s->weight_reversed > 0.0)
+        return s->weight_kept < s->weight_reversed;
+    {
+        unsigned int i, kept = 0, reversed = 0;
+        for (i = m->patch_start[patch]; i < m->patch_start[patch + 1]; ++i) {
+            unsigned int relative = m->tri_bits[m->queue[i]] & MESHFIX__TRI_RELATIVE;
+            kept += !relative;
+            reversed += relative;
+        }
+        return kept < reversed;
+    }
+}
+
+/* ===== >>report ===== */
+
+MESHFIX__PRIVATE unsigned int meshfix__flip_of(const meshfix__mesh *m, unsigned int t)
+{
+    return (m->tri_bits[t] & MESHFIX__TRI_FLIP) ? 1u : 0u;
+}
+
+/* A manifold edge is inconsistent when, after the flips, both triangles run
+   it the same way; an edge of 3+ triangles always repeats a direction. */
+MESHFIX__PRIVATE size_t meshfix__count_inconsistent(const meshfix__mesh *m, int with_flips)
+{
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
+    size_t count = 0;
+    for (h = 0; h < half_edges; ++h) {
+        unsigned int g = m->mate[h];
+        if (meshfix__is_ring_last(m, h)) {
+            count++;
+        } else if (meshfix__is_mate(g) && h < g) {
+            unsigned int flips = with_flips ? meshfix__flip_of(m, h / 3) ^ meshfix__flip_of(m, g / 3) : 0u;
+            count += (size_t)((unsigned int)meshfix__same_direction(m, h, g) ^ flips);
+        }
+    }
+    return count;
+}
+
+MESHFIX__PRIVATE meshfix_component *meshfix__component_out(const meshfix_options *o, unsigned int component)
+{
+    return o != NULL && o->components != NULL && component < o->components_capacity ? &o->components[component] : NULL;
+}
+
+/* Counts each edge once, for the component of its triangles. */
+MESHFIX__PRIVATE void meshfix__count_component_edges(const meshfix__mesh *m, const meshfix_options *o)
+{
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
+    for (h = 0; h < half_edges; ++h) {
+        unsigned int g = m->mate[h];
+        meshfix_component *c;
+        if (m->tri_bits[h / 3] & MESHFIX__TRI_DEGENERATE)
+            continue;
+        c = meshfix__component_out(o, m->patch_link[m->tri_patch[h / 3]]);
+        if (c == NULL)
+            continue;
+        if (g == MESHFIX__NONE) {
+            c->edges++;
+            c->edges_boundary++;
+        } else if (meshfix__is_ring_last(m, h)) {
+            c->edges++;
+            c->edges_non_manifold++;
+        } else if (meshfix__is_mate(g) && h < g) {
+            c->edges++;
+        }
+    }
+}
+
+/* Distinct vertices per component: patches are grouped by component (a
+   counting sort into the free `mate` buffer), then a vertex is counted the
+   first time each component touches it. Returns the sum over components. */
+MESHFIX__PRIVATE size_t meshfix__count_component_vertices(meshfix__mesh *m, const meshfix_options *o,
+                                                          meshfix_report *r)
+{
+    unsigned int *offsets = m->mate, *order = m->mate + m->component_count + 1, *mark = m->vertex_work;
+    unsigned int p, c, i, sum = 0;
+    size_t pairs = 0;
+    MESHFIX_MEMSET(offsets, 0, (m->component_count + 1) * sizeof(unsigned int));
+    MESHFIX_MEMSET(mark, 0, m->vertex_range * sizeof(unsigned int));
+    for (p = 0; p < m->patch_count; ++p)
+        offsets[m->patch_link[p]]++;
+    for (c = 0; c <= m->component_count; ++c) {
+        unsigned int n = offsets[c];
+        offsets[c] = sum;
+        sum += n;
+    }
+    for (p = 0; p < m->patch_count; ++p)
+        order[offsets[m->patch_link[p]]++] = p;
+    for (c = 0, i = 0; c < m->component_count; ++c) {
+        size_t vertices = 0;
+        meshfix_component *out = meshfix__component_out(o, c);
+        for (; i < m->patch_count && m->patch_link[order[i]] == c; ++i) {
+            unsigned int q, patch = order[i];
+            for (q = m->patch_start[patch]; q < m->patch_start[patch + 1]; ++q) {
+                const unsigned int *v = m->indices + 3 * m->queue[q];
+                int k;
+                for (k = 0; k < 3; ++k) {
+                    if (mark[v[k]] == 0) {
+                        r->vertices_used++;
+                        if (m->positions != NULL) {
+                            const float *x = meshfix__position(m, v[k]);
+                            r->vertices_non_finite += (size_t)!(meshfix__is_finite(x[0]) &&
+                                                               meshfix__is_finite(x[1]) &&
+                                                               meshfix__is_finite(x[2]));
+                        }
+                    }
+                    if (mark[v[k]] != c + 1) {
+                        mark[v[k]] = c + 1;
+                        vertices++;
+                    }
+                }
+            }
+        }
+        if (out != NULL)
+            out->vertices = vertices;
+        pairs += vertices;
+    }
+    return pairs;
+}
+
+MESHFIX__PRIVATE void meshfix__add_patch_to_component(const meshfix__mesh *m, unsigned int patch,
+                                                      const meshfix__patch_sums *s, double volume,
+                                                      meshfix_component *c)
+{
+    unsigned int bits = m->patch_bits[patch];
+    if (c->patches == 0) {
+        c->first_triangle = m->queue[m->patch_start[patch]];
+        c->closed = 1;
+        c->orientable = 1;
+    }
+    c->patches++;
+    c->triangles += m->patch_start[patch + 1] - m->patch_start[patch];
+    c->area += s->area;
+    c->signed_volume += volume;
+    if (bits & MESHFIX__PATCH_NOT_MANIFOLD)
+        c->closed = 0;
+    if (bits & MESHFIX__PATCH_NON_ORIENTABLE)
+        c->orientable = 0;
+}
+
+/* Turns each patch as the policy decides (policy < 0: inspect, no turns),
+   marks the flipped triangles, and sums the report's totals as returned. */
+MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, const meshfix_options *o,
+                                              meshfix_report *r)
+{
+    unsigned int p, c;
+    MESHFIX_MEMSET(m->component_bits, 0, m->component_count);
+    for (p = 0; p < m->patch_count; ++p) {
+        meshfix__patch_sums s;
+        unsigned int i, turn = 0, bits = m->patch_bits[p];
+        double volume;
+        meshfix_component *out = meshfix__component_out(o, m->patch_link[p]);
+        meshfix__sum_patch(m, p, &s);
+        if (policy >= 0) {
+            turn = (unsigned int)meshfix__decide_patch(m, p, (meshfix_policy)policy, &s);
+            for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
+                unsigned int t = m->queue[i];
+                unsigned int flip = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ^ turn;
+                m->tri_bits[t] = (unsigned char)(m->tri_bits[t] | (flip ? MESHFIX__TRI_FLIP : 0u));
+                r->triangles_flipped += flip;
+            }
+        }
+        volume = policy < 0 ? s.volume_given : turn ? -s.volume_relative : s.volume_relative;
+        if (!meshfix__is_closed_orientable(m, p))
+            volume = 0.0;
+        r->triangles_zero_area += s.zero_area;
+        r->area += s.area;
+        r->signed_volume += volume;
+        r->patches_closed += (size_t)!(bits & MESHFIX__PATCH_OPEN);
+        r->patches_inside_out += (size_t)(volume < 0.0);
+        if (out != NULL)
+            meshfix__add_patch_to_component(m, p, &s, volume, out);
+        m->component_bits[m->patch_link[p]] |= (unsigned char)bits;
+    }
+    for (c = 0; c < m->component_count; ++c) {
+        r->components_closed += (size_t)!(m->component_bits[c] & MESHFIX__PATCH_NOT_MANIFOLD);
+        r->components_non_orientable += (size_t)((m->component_bits[c] & MESHFIX__PATCH_NON_ORIENTABLE) != 0);
+    }
+}
+
+#ifdef MESHFIX_DEBUG
+/* After orienting, every manifold edge inside an orientable patch must be
+   run in opposite directions by its two triangles. */
+MESHFIX__PRIVATE void meshfix__debug_check_orientation(const meshfix__mesh *m)
+{
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
+    for (h = 0; h < half_edges; ++h) {
+        unsigned int g = m->mate[h];
+        if (meshfix__is_mate(g) && !(m->patch_bits[m->tri_patch[h / 3]] & MESHFIX__PATCH_NON_ORIENTABLE))
+            MESHFIX_ASSERT(((unsigned int)meshfix__same_direction(m, h, g) ^ meshfix__flip_of(m, h / 3) ^
+                            meshfix__flip_of(m, g / 3)) == 0);
+    }
+}
+#endif
+
+/* ===== >>pipeline ===== */
+
+MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, const meshfix__plan *plan,
+                                    const unsigned int *indices, size_t index_count, const float *positions,
+                                    size_t stride, size_t vertex_range)
+{
+    MESHFIX_MEMSET(m, 0, sizeof(*m));
+    m->indices = indices;
+    m->triangle_count = index_count / 3;
+    m->vertex_range = vertex_range;
+    m->positions = (const char *)positions;
+    m->stride = stride;
+    m->mate = (unsigned int *)(void *)(block + plan->mate);
+    m->sorted = (unsigned int *)(void *)(block + plan->sorted);
+    m->queue = m->sorted;
+    m->tri_patch = m->sorted + m->triangle_count;
+    m->component_bits = (unsigned char *)(m->sorted + 2 * m->triangle_count);
+    m->tri_bits = block + plan->tri_bits;
+    m->vertex_work = (unsigned int *)(void *)(block + plan->vertex_work);
+    m->patch_start = (unsigned int *)(void *)(block + plan->patch_start);
+    m->patch_link = (unsigned int *)(void *)(block + plan->patch_link);
+    m->patch_bits = block + plan->patch_bits;
+}
+
+/* Stages 2 to 5 on a bound mesh; fills r and the component outputs. */
+MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshfix_options *o, meshfix_report *r)
+{
+    meshfix__edge_counts edges;
+    size_t c, n;
+
+    r->triangles_degenerate = meshfix__mark_degenerate(m);
+    r->triangles_duplicate = meshfix__count_duplicates(m);
+    meshfix__build_edges(m, &edges);
+    r->edges = edges.edges;
+    r->edges_boundary = edges.boundary;
+    r->edges_manifold = edges.manifold;
+    r->edges_non_manifold = edges.non_manifold;
+    r->edges_inconsistent_input = meshfix__count_inconsistent(m, 0);
+
+    meshfix__flood_patches(m);
+    meshfix__join_components(m);
+    r->patches = m->patch_count;
+    r->components = m->component_count;
+
+    n = o != NULL && o->components != NULL ? o->components_capacity : 0;
+    n = m->component_count < n ? m->component_count : n;
+    if (n != 0)
+        MESHFIX_MEMSET(o->components, 0, n * sizeof(meshfix_component));
+    meshfix__orient_patches(m, policy, o, r);
+#ifdef MESHFIX_DEBUG
+    if (policy >= 0)
+        meshfix__debug_check_orientation(m);
+#endif
+    r->edges_inconsistent = policy >= 0 ? meshfix__count_inconsistent(m, 1) : r->edges_inconsistent_input;
+    meshfix__count_component_edges(m, o);
+    r->euler_characteristic = (long)meshfix__count_component_vertices(m, o, r) - (long)r->edges +
+                              (long)(r->triangles - r->triangles_degenerate);
+    for (c = 0; c < n; ++c)
+        o->components[c].euler_characteristic = (long)o->components[c].vertices - (long)o->components[c].edges +
+                                                (long)o->components[c].triangles;
+}
+
+MESHFIX__PRIVATE void meshfix__write_indices(const meshfix__mesh *m, unsigned int *destination)
+{
+    size_t t;
+    if (destination != m->indices)
+        MESHFIX_MEMCPY(destination, m->indices, 3 * m->triangle_count * sizeof(unsigned int));
+    for (t = 0; t < m->triangle_count; ++t) {
+        if (m->tri_bits[t] & MESHFIX__TRI_FLIP) {
+            unsigned int x = destination[3 * t + 1];
+            destination[3 * t + 1] = destination[3 * t + 2];
+            destination[3 * t + 2] = x;
+        }
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__write_triangle_outputs(const meshfix__mesh *m, const meshfix_options *o, int policy)
+{
+    size_t t;
+    if (o != NULL && o->flipped != NULL && policy >= 0)
+        for (t = 0; t < m->triangle_count; ++t)
+            o->flipped[t] = (unsigned char)meshfix__flip_of(m, (unsigned int)t);
+    if (o != NULL && o->patch_ids != NULL)
+        for (t = 0; t < m->triangle_count; ++t)
+            o->patch_ids[t] = m->tri_patch[t];
+}
+
+/* The pipeline shared by orient and inspect (policy < 0). Outputs are
+   written only after every check has passed and the work is done. */
+MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const unsigned int *indices,
+                                             size_t index_count, const float *positions,
+                                             size_t vertex_count, size_t stride,
+                                             const meshfix_options *options, int policy,
+                                             meshfix_report *report)
+{
+    meshfix_allocator allocator;
+    meshfix__plan plan;
+    meshfix__mesh m;
+    meshfix_report r;
+    unsigned char *raw, *block;
+    size_t vertex_range = 0;
+    meshfix_result result;
+
+    /* 1. validate, before touching anything */
+    result = meshfix__validate(indices, index_count, positions, vertex_count, stride, &vertex_range);
+    if (result != MESHFIX_OK)
+        return result;
+    if (policy == MESHFIX_POLICY_AUTO)
+        policy = positions != NULL ? MESHFIX_POLICY_OUTWARD : MESHFIX_POLICY_MAJORITY;
+    if (policy == MESHFIX_POLICY_OUTWARD && positions == NULL)
+        return MESHFIX_ERROR_POSITIONS_REQUIRED;
+    MESHFIX_MEMSET(&r, 0, sizeof(r));
+    r.triangles = index_count / 3;
+    if (index_count == 0) {
+        if (report != NULL)
+            *report = r;
+        return MESHFIX_OK;
+    }
+    if (!meshfix__make_plan(&plan, vertex_range, index_count / 3))
+        return MESHFIX_ERROR_TOO_LARGE;
+
+    /* one block holds all scratch: the caller's, or a single allocation */
+    MESHFIX_MEMSET(&allocator, 0, sizeof(allocator));
+    if (options != NULL && options->allocator.alloc_fn != NULL) {
+        if (options->allocator.free_fn == NULL)
+            return MESHFIX_ERROR_INVALID_ARGUMENT;
+        allocator = options->allocator;
+    }
+    if (options != NULL && options->scratch != NULL) {
+        if (options->scratch_size < plan.total)
+            return MESHFIX_ERROR_SCRATCH_TOO_SMALL;
+        raw = (unsigned char *)options->scratch;
+    } else {
+        raw = (unsigned char *)(allocator.alloc_fn != NULL ? allocator.alloc_fn(plan.total, allocator.user_data)
+                                                           : MESHFIX_MALLOC(plan.total, allocator.user_data));
+        if (raw == NULL)
+            return MESHFIX_ERROR_OUT_OF_MEMORY;
+    }
+    block = raw + (16u - (size_t)raw % 16u) % 16u;
+    meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range);
+
+    /* 2-5. edges, patches, components, policy */
+    meshfix__analyze(&m, policy, options, &r);
+
+    /* 6. write: nothing can fail from here on */
+    if (destination != NULL && policy >= 0)
+        meshfix__write_indices(&m, destination);
+    meshfix__write_triangle_outputs(&m, options, policy);
+    if (report != NULL)
+        *report = r;
+    if (raw != (unsigned char *)(options != NULL ? options->scratch : NULL)) {
+        if (allocator.free_fn != NULL)
+            allocator.free_fn(raw, allocator.user_data);
+        else
+            MESHFIX_FREE(raw, allocator.user_data);
+    }
+    return MESHFIX_OK;
+}
+
+/* ===== >>public ===== */
+
+MESHFIX_API meshfix_result meshfix_orient(unsigned int *destination, const unsigned int *indices,
+                                          size_t index_count, const float *vertex_positions,
+                                          size_t vertex_count, size_t vertex_positions_stride,
+                                          const meshfix_options *options, meshfix_report *report)
+{
+    int policy = options != NULL ? (int)options->policy : (int)MESHFIX_POLICY_AUTO;
+    if (policy < 0 || policy >= (int)MESHFIX_POLICY_COUNT)
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
+    return meshfix__run(destination, indices, index_count, vertex_positions, vertex_count,
+                        vertex_positions_stride, options, policy, report);
+}
+
+MESHFIX_API meshfix_result meshfix_inspect_ex(const unsigned int *indices, size_t index_count,
+                                              const float *vertex_positions, size_t vertex_count,
+                                              size_t vertex_positions_stride, const meshfix_options *options,
+                                              meshfix_report *report)
+{
+    if (report == NULL)
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
+    return meshfix__run(NULL, indices, index_count, vertex_positions, vertex_count, vertex_positions_stride,
+                        options, -1, report);
+}
+
+MESHFIX_API meshfix_result meshfix_inspect(const unsigned int *indices, size_t index_count,
+                                           const float *vertex_positions, size_t vertex_count,
+                                           size_t vertex_positions_stride, meshfix_report *report)
+{
+    return meshfix_inspect_ex(indices, index_count, vertex_positions, vertex_count, vertex_positions_stride,
+                              NULL, report);
+}
+
+MESHFIX_API int meshfix_check(const unsigned int *indices, size_t index_count, const float *vertex_positions,
+                              size_t vertex_count, size_t vertex_positions_stride, unsigned int requirements)
+{
+    meshfix_report r;
+    unsigned int needs_positions = MESHFIX_REQUIRE_OUTWARD | MESHFIX_REQUIRE_NO_DEGENERATE;
+    if (requirements == 0)
+        requirements = MESHFIX_REQUIRE_CONSISTENT;
+    if ((requirements & needs_positions) && vertex_positions == NULL)
+        return 0;
+    if (meshfix_inspect(indices, index_count, vertex_positions, vertex_count, vertex_positions_stride, &r) !=
+        MESHFIX_OK)
+        return 0;
+    if ((requirements & MESHFIX_REQUIRE_CONSISTENT) && r.edges_inconsistent != 0)
+        return 0;
+    if ((requirements & MESHFIX_REQUIRE_CLOSED) && r.edges_boundary != 0)
+        return 0;
+    if ((requirements & MESHFIX_REQUIRE_MANIFOLD) && r.edges_non_manifold != 0)
+        return 0;
+    if ((requirements & MESHFIX_REQUIRE_OUTWARD) && r.patches_inside_out != 0)
+        return 0;
+    if ((requirements & MESHFIX_REQUIRE_NO_DEGENERATE) &&
+        r.triangles_degenerate + r.triangles_zero_area + r.triangles_duplicate != 0)
+        return 0;
+    return 1;
+}
+
+MESHFIX_API size_t meshfix_scratch_size(size_t vertex_count, size_t index_count)
+{
+    meshfix__plan plan;
+    if (index_count == 0 || index_count > MESHFIX__MAX_INDEX_COUNT ||
+        !meshfix__make_plan(&plan, vertex_count, (index_count + 2) / 3))
+        return 0;
+    return plan.total;
+}
+
+MESHFIX_API const char *meshfix_result_string(meshfix_result result)
+{
+#define MESHFIX__RESULT_TEXT(name, text) text,
+    static const char *const texts[] = {MESHFIX_RESULT_LIST(MESHFIX__RESULT_TEXT) "unknown result"};
+#undef MESHFIX__RESULT_TEXT
+    unsigned int i = (unsigned int)result;
+    return texts[i < (unsigned int)MESHFIX_RESULT_COUNT ? i : (unsigned int)MESHFIX_RESULT_COUNT];
+}
+
+#endif /* MESHFIX_IMPLEMENTATION_INCLUDED */
+#endif /* MESHFIX_IMPLEMENTATION */
+
+/*
+------------------------------------------------------------------------------
+This software is available under 2 licenses -- choose whichever you prefer.
+------------------------------------------------------------------------------
+ALTERNATIVE A - MIT License
+Copyright (c) 2026 the meshfix.h authors
+Permission is hereby granted, free of charge, to any person obtaining a copy of
+this software and associated documentation files (the "Software"), to deal in
+the Software without restriction, including without limitation the rights to
+use, copy, modify, merge, publish, distribute, sublicense, and/or sell copies
+of the Software, and to permit persons to whom the Software is furnished to do
+so, subject to the following conditions:
+The above copyright notice and this permission notice shall be included in all
+copies or substantial portions of the Software.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER
+LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM,
+OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE
+SOFTWARE.
+------------------------------------------------------------------------------
+ALTERNATIVE B - Public Domain (www.unlicense.org)
+This is free and unencumbered software released into the public domain.
+Anyone is free to copy, modify, publish, use, compile, sell, or distribute this
+software, either in source code form or as a compiled binary, for any purpose,
+commercial or non-commercial, and by any means.
+In jurisdictions that recognize copyright laws, the author or authors of this
+software dedicate any and all copyright interest in the software to the public
+domain. We make this dedication for the benefit of the public at large and to
+the detriment of our heirs and successors. We intend this dedication to be an
+overt act of relinquishment in perpetuity of all present and future rights to
+this software under copyright law.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER LIABILITY, WHETHER IN AN
+ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION
+WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE SOFTWARE.
+------------------------------------------------------------------------------
+*/
