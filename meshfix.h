@@ -216,6 +216,7 @@ typedef struct meshfix_report {
     size_t triangles_flipped;     /* orient only */
     size_t vertices_used;
     size_t vertices_non_finite;   /* used vertices with a NaN or infinite coordinate */
+    size_t vertices_non_manifold; /* triangles around it form 2+ fans (bow-tie, or on an edge of 3+) */
     size_t edges;
     size_t edges_boundary;        /* 1 triangle */
     size_t edges_manifold;        /* 2 triangles */
@@ -224,7 +225,7 @@ typedef struct meshfix_report {
     size_t edges_inconsistent_input; /* the same count before repair */
     size_t patches;
     size_t patches_closed;
-    size_t patches_inside_out;    /* closed orientable patches with negative signed volume */
+    size_t patches_inside_out;    /* closed orientable patches with clearly negative signed volume */
     size_t components;
     size_t components_closed;     /* every edge manifold */
     size_t components_non_orientable;
@@ -236,7 +237,7 @@ typedef struct meshfix_report {
 /* meshfix_check requirements; 0 means MESHFIX_REQUIRE_CONSISTENT. */
 #define MESHFIX_REQUIRE_CONSISTENT   1u  /* no edge with a direction used twice */
 #define MESHFIX_REQUIRE_CLOSED       2u  /* no boundary edge */
-#define MESHFIX_REQUIRE_MANIFOLD     4u  /* no edge of 3+ triangles */
+#define MESHFIX_REQUIRE_MANIFOLD     4u  /* no edge of 3+ triangles, no bow-tie vertex */
 #define MESHFIX_REQUIRE_OUTWARD      8u  /* no closed patch inside-out (needs positions) */
 #define MESHFIX_REQUIRE_NO_DEGENERATE 16u /* no repeated index, zero area or duplicate triangle */
 #define MESHFIX_REQUIRE_SOLID        31u /* all of the above */
@@ -358,6 +359,7 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #define MESHFIX__TRI_RELATIVE   1u /* flipped relative to its patch seed */
 #define MESHFIX__TRI_DEGENERATE 2u
 #define MESHFIX__TRI_FLIP       4u /* final decision */
+#define MESHFIX__TRI_CORNER_SEEN 8u /* << corner: fan walk visited corner 0, 1, 2 */
 /* patch bits */
 #define MESHFIX__PATCH_OPEN           1u /* a boundary edge or an odd share of a ring */
 #define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
@@ -646,7 +648,90 @@ MESHFIX__PRIVATE int meshfix__same_direction(const meshfix__mesh *m, unsigned in
     return m->indices[h] == m->indices[g];
 }
 
+/* ===== >>fans ===== */
+
+/* A vertex is manifold when the triangles around it form one fan: one
+   chain linked through manifold edges, closed or open. Walking the chain
+   needs no orientation: in each triangle, leave by the other edge at v. */
+MESHFIX__PRIVATE unsigned int meshfix__corner_of(const meshfix__mesh *m, unsigned int t, unsigned int v)
+{
+    return m->indices[3 * t] == v ? 0u : m->indices[3 * t + 1] == v ? 1u : 2u;
+}
+
+MESHFIX__PRIVATE void meshfix__mark_corner(meshfix__mesh *m, unsigned int t, unsigned int corner)
+{
+    m->tri_bits[t] = (unsigned char)(m->tri_bits[t] | (MESHFIX__TRI_CORNER_SEEN << corner));
+}
+
+/* Walks from triangle t across half-edge h (which touches v) until the fan
+   ends or comes back to t. Returns 1 when it came back: a closed fan. */
+MESHFIX__PRIVATE int meshfix__walk_fan(meshfix__mesh *m, unsigned int t, unsigned int h, unsigned int v)
+{
+    for (;;) {
+        unsigned int g = m->mate[h], u, corner;
+        if (!meshfix__is_mate(g))
+            return 0;
+        u = g / 3;
+        if (u == t)
+            return 1;
+        corner = meshfix__corner_of(m, u, v);
+        meshfix__mark_corner(m, u, corner);
+        /* g is u's outgoing or incoming half-edge at v; leave by the other */
+        h = g == 3 * u + corner ? 3 * u + (corner + 2) % 3 : 3 * u + corner;
+    }
+}
+
+MESHFIX__PRIVATE size_t meshfix__count_non_manifold_vertices(meshfix__mesh *m)
+{
+    unsigned int *fans = m->vertex_work, t, corner;
+    size_t v, count = 0;
+    MESHFIX_MEMSET(fans, 0, m->vertex_range * sizeof(unsigned int));
+    for (t = 0; t < m->triangle_count; ++t) {
+        if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
+            continue;
+        for (corner = 0; corner < 3; ++corner) {
+            unsigned int vertex = m->indices[3 * t + corner];
+            if (m->tri_bits[t] & (MESHFIX__TRI_CORNER_SEEN << corner))
+                continue;
+            meshfix__mark_corner(m, t, corner);
+            fans[vertex]++;
+            if (!meshfix__walk_fan(m, t, 3 * t + corner, vertex))
+                meshfix__walk_fan(m, t, 3 * t + (corner + 2) % 3, vertex);
+        }
+    }
+    for (v = 0; v < m->vertex_range; ++v)
+        count += (size_t)(fans[v] > 1);
+    return count;
+}
+
 /* ===== >>patches ===== */
+
+/* The manifold neighbours of t as half-edges, ordered by neighbour
+   triangle: an order that flipping t does not change, so the spanning tree
+   (and the seam left in a non-orientable patch) is the same on every run.
+   Returns how many; marks the patch when t has other kinds of edges. */
+MESHFIX__PRIVATE unsigned int meshfix__neighbours(meshfix__mesh *m, unsigned int t, unsigned int patch,
+                                                 unsigned int h_out[3])
+{
+    unsigned int h, n = 0, i, j;
+    for (h = 3 * t; h < 3 * t + 3; ++h) {
+        unsigned int g = m->mate[h];
+        if (meshfix__is_mate(g)) {
+            h_out[n++] = h;
+            continue;
+        }
+        m->patch_bits[patch] |= MESHFIX__PATCH_NOT_MANIFOLD;
+        if (g == MESHFIX__NONE)
+            m->patch_bits[patch] |= MESHFIX__PATCH_OPEN;
+    }
+    for (i = 1; i < n; ++i)
+        for (j = i; j > 0 && m->mate[h_out[j - 1]] / 3 > m->mate[h_out[j]] / 3; --j) {
+            unsigned int x = h_out[j];
+            h_out[j] = h_out[j - 1];
+            h_out[j - 1] = x;
+        }
+    return n;
+}
 
 /* Breadth-first flood fill across manifold edges. The seed of each patch is
    its lowest triangle; a neighbour that runs the shared edge the same way
@@ -665,18 +750,12 @@ MESHFIX__PRIVATE void meshfix__flood_patches(meshfix__mesh *m)
         m->tri_patch[seed] = patch;
         m->queue[tail++] = (unsigned int)seed;
         while (head < tail) {
-            unsigned int t = m->queue[head++], h;
+            unsigned int t = m->queue[head++], half_edges[3], i;
             unsigned int relative = m->tri_bits[t] & MESHFIX__TRI_RELATIVE;
-            for (h = 3 * t; h < 3 * t + 3; ++h) {
-                unsigned int g = m->mate[h], u, wanted;
-                if (!meshfix__is_mate(g)) {
-                    m->patch_bits[patch] |= MESHFIX__PATCH_NOT_MANIFOLD;
-                    if (g == MESHFIX__NONE)
-                        m->patch_bits[patch] |= MESHFIX__PATCH_OPEN;
-                    continue;
-                }
-                u = g / 3;
-                wanted = relative ^ (unsigned int)meshfix__same_direction(m, h, g);
+            unsigned int count = meshfix__neighbours(m, t, patch, half_edges);
+            for (i = 0; i < count; ++i) {
+                unsigned int h = half_edges[i], g = m->mate[h], u = g / 3;
+                unsigned int wanted = relative ^ (unsigned int)meshfix__same_direction(m, h, g);
                 if (m->tri_patch[u] == MESHFIX__NONE) {
                     m->tri_patch[u] = patch;
                     m->tri_bits[u] = (unsigned char)((m->tri_bits[u] & ~MESHFIX__TRI_RELATIVE) | wanted);
@@ -1016,7 +1095,7 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         r->area += s.area;
         r->signed_volume += volume;
         r->patches_closed += (size_t)!(bits & MESHFIX__PATCH_OPEN);
-        r->patches_inside_out += (size_t)(volume < 0.0);
+        r->patches_inside_out += (size_t)(volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area));
         if (out != NULL)
             meshfix__add_patch_to_component(m, p, &s, volume, out);
         m->component_bits[m->patch_link[p]] |= (unsigned char)bits;
@@ -1080,6 +1159,7 @@ MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshf
     r->edges_manifold = edges.manifold;
     r->edges_non_manifold = edges.non_manifold;
     r->edges_inconsistent_input = meshfix__count_inconsistent(m, 0);
+    r->vertices_non_manifold = meshfix__count_non_manifold_vertices(m);
 
     meshfix__flood_patches(m);
     meshfix__join_components(m);
@@ -1250,7 +1330,7 @@ MESHFIX_API int meshfix_check(const unsigned int *indices, size_t index_count, c
         return 0;
     if ((requirements & MESHFIX_REQUIRE_CLOSED) && r.edges_boundary != 0)
         return 0;
-    if ((requirements & MESHFIX_REQUIRE_MANIFOLD) && r.edges_non_manifold != 0)
+    if ((requirements & MESHFIX_REQUIRE_MANIFOLD) && r.edges_non_manifold + r.vertices_non_manifold != 0)
         return 0;
     if ((requirements & MESHFIX_REQUIRE_OUTWARD) && r.patches_inside_out != 0)
         return 0;

@@ -1,0 +1,162 @@
+/* meshfix - command-line winding repair built on meshfix.h
+
+   usage: meshfix [--policy auto|seed|majority|outward] [--mark FILE.ply]
+                  [--inspect] [--quiet] INPUT OUTPUT
+
+   Reads INPUT (.obj .off .stl .ply), prints the inspect report, repairs the
+   winding with the chosen policy, prints the report of the result and
+   writes OUTPUT in the format its extension names. --mark writes the
+   result with face colours: flipped faces red, the others tinted by patch.
+   --inspect only reports (no OUTPUT). Exit status: 0 success, 1 bad
+   arguments or file, 2 the library refused the mesh. */
+#define MESHFIX_IMPLEMENTATION
+#include "../meshfix.h"
+#define MESHIO_IMPLEMENTATION
+#include "meshio.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const policy_names[MESHFIX_POLICY_COUNT] = {"auto", "seed", "majority", "outward"};
+
+static void print_report(const char *title, const meshfix_report *r)
+{
+    printf("%s\n", title);
+    printf("  triangles %lu (degenerate %lu, zero area %lu, duplicate %lu)\n", (unsigned long)r->triangles,
+           (unsigned long)r->triangles_degenerate, (unsigned long)r->triangles_zero_area,
+           (unsigned long)r->triangles_duplicate);
+    printf("  vertices  %lu used (%lu not finite, %lu non-manifold)\n", (unsigned long)r->vertices_used,
+           (unsigned long)r->vertices_non_finite, (unsigned long)r->vertices_non_manifold);
+    printf("  edges     %lu: boundary %lu, manifold %lu, non-manifold %lu, inconsistent %lu\n",
+           (unsigned long)r->edges, (unsigned long)r->edges_boundary, (unsigned long)r->edges_manifold,
+           (unsigned long)r->edges_non_manifold, (unsigned long)r->edges_inconsistent);
+    printf("  patches   %lu (closed %lu, inside-out %lu)\n", (unsigned long)r->patches,
+           (unsigned long)r->patches_closed, (unsigned long)r->patches_inside_out);
+    printf("  components %lu (closed %lu, non-orientable %lu), Euler characteristic %ld\n",
+           (unsigned long)r->components, (unsigned long)r->components_closed,
+           (unsigned long)r->components_non_orientable, r->euler_characteristic);
+    printf("  area %.6g, signed volume of closed patches %.6g\n", r->area, r->signed_volume);
+}
+
+/* Flipped faces red; the rest a muted colour per patch, so patch seams show. */
+static unsigned char *face_colours(const unsigned char *flipped, const unsigned int *patch_ids, size_t triangles)
+{
+    unsigned char *rgb = (unsigned char *)malloc(3 * triangles + 1);
+    size_t t;
+    if (rgb == NULL)
+        return NULL;
+    for (t = 0; t < triangles; ++t) {
+        unsigned int h = patch_ids[t] * 2654435761u;
+        if (flipped[t]) {
+            rgb[3 * t] = 230, rgb[3 * t + 1] = 30, rgb[3 * t + 2] = 30;
+        } else if (patch_ids[t] == 0xFFFFFFFFu) {
+            rgb[3 * t] = 40, rgb[3 * t + 1] = 40, rgb[3 * t + 2] = 40;
+        } else {
+            rgb[3 * t] = (unsigned char)(90 + (h >> 8) % 80);
+            rgb[3 * t + 1] = (unsigned char)(120 + (h >> 16) % 100);
+            rgb[3 * t + 2] = (unsigned char)(140 + (h >> 24) % 100);
+        }
+    }
+    return rgb;
+}
+
+static int usage(void)
+{
+    fprintf(stderr, "usage: meshfix [--policy auto|seed|majority|outward] [--mark FILE.ply] [--quiet] INPUT OUTPUT\n"
+                    "       meshfix --inspect INPUT\n");
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    const char *input = NULL, *output = NULL, *mark = NULL;
+    int quiet = 0, inspect_only = 0, i, status = 0;
+    char error[256];
+    mio_mesh mesh;
+    meshfix_options options;
+    meshfix_report before, after;
+    meshfix_result r;
+    size_t triangles;
+
+    memset(&options, 0, sizeof(options));
+    for (i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--policy") == 0 && i + 1 < argc) {
+            int p;
+            for (p = 0; p < MESHFIX_POLICY_COUNT && strcmp(argv[i + 1], policy_names[p]) != 0; ++p) {
+            }
+            if (p == MESHFIX_POLICY_COUNT) {
+                fprintf(stderr, "meshfix: unknown policy '%s'\n", argv[i + 1]);
+                return 1;
+            }
+            options.policy = (meshfix_policy)p;
+            ++i;
+        } else if (strcmp(argv[i], "--mark") == 0 && i + 1 < argc) {
+            mark = argv[++i];
+        } else if (strcmp(argv[i], "--quiet") == 0) {
+            quiet = 1;
+        } else if (strcmp(argv[i], "--inspect") == 0) {
+            inspect_only = 1;
+        } else if (argv[i][0] == '-' && argv[i][1] != 0) {
+            return usage();
+        } else if (input == NULL) {
+            input = argv[i];
+        } else if (output == NULL) {
+            output = argv[i];
+        } else {
+            return usage();
+        }
+    }
+    if (input == NULL || (output == NULL && !inspect_only))
+        return usage();
+
+    if (!mio_load(input, &mesh, error, sizeof(error))) {
+        fprintf(stderr, "meshfix: %s: %s\n", input, error);
+        return 1;
+    }
+    r = meshfix_inspect(mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12, &before);
+    if (r != MESHFIX_OK) {
+        fprintf(stderr, "meshfix: %s: %s\n", input, meshfix_result_string(r));
+        mio_free(&mesh);
+        return 2;
+    }
+    if (!quiet)
+        print_report(input, &before);
+    if (inspect_only) {
+        mio_free(&mesh);
+        return 0;
+    }
+
+    triangles = mesh.index_count / 3;
+    options.flipped = (unsigned char *)malloc(triangles + 1);
+    options.patch_ids = (unsigned int *)malloc(sizeof(unsigned int) * triangles + 1);
+    if (options.flipped == NULL || options.patch_ids == NULL) {
+        fprintf(stderr, "meshfix: out of memory\n");
+        status = 1;
+    } else if ((r = meshfix_orient(mesh.indices, mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count,
+                                   12, &options, &after)) != MESHFIX_OK) {
+        fprintf(stderr, "meshfix: %s: %s\n", input, meshfix_result_string(r));
+        status = 2;
+    } else {
+        if (!quiet) {
+            printf("repair (policy %s): flipped %lu of %lu triangles\n", policy_names[options.policy],
+                   (unsigned long)after.triangles_flipped, (unsigned long)after.triangles);
+            print_report(output, &after);
+        }
+        if (!mio_save(output, &mesh, NULL, error, sizeof(error))) {
+            fprintf(stderr, "meshfix: %s\n", error);
+            status = 1;
+        } else if (mark != NULL) {
+            unsigned char *rgb = face_colours(options.flipped, options.patch_ids, triangles);
+            if (rgb == NULL || !mio_save(mark, &mesh, rgb, error, sizeof(error))) {
+                fprintf(stderr, "meshfix: %s\n", rgb == NULL ? "out of memory" : error);
+                status = 1;
+            }
+            free(rgb);
+        }
+    }
+    free(options.flipped);
+    free(options.patch_ids);
+    mio_free(&mesh);
+    return status;
+}

@@ -1,0 +1,3 @@
+/* The implementation compiled as C ... */
+#define MESHFIX_IMPLEMENTATION
+#include "../../meshfix.h"

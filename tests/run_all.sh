@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Runs every suite and check of `make test`, then prints one closing line
+# "N passed, N failed" over all of them. Called by the Makefile with the
+# binaries already built; CC and CXX name the compilers for the build checks.
+set -u
+cd "$(dirname "$0")/.."
+CC=${CC:-cc}
+CXX=${CXX:-c++}
+STRICT="-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion -Wcast-qual -Werror"
+out=build/compile
+mkdir -p "$out"
+passed=0
+failed=0
+
+check() { # name, command...
+    local name=$1
+    shift
+    if "$@" >"$out/last.log" 2>&1; then
+        passed=$((passed + 1))
+        echo "ok   $name"
+    else
+        failed=$((failed + 1))
+        echo "FAIL $name"
+        sed 's/^/    /' "$out/last.log" | head -20
+    fi
+}
+
+suite() { # name, binary: adds the binary's own "N passed, N failed" line
+    local name=$1 log="$out/$(basename "$2").log"
+    shift
+    echo "== $name"
+    "$@" 2>&1 | tee "$log" | grep -v '^ok ' || true
+    local status=${PIPESTATUS[0]}
+    local line
+    line=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$log" | tail -n 1)
+    if [ -z "$line" ]; then
+        echo "FAIL $name: no closing line (exit status $status)"
+        failed=$((failed + 1))
+        return
+    fi
+    passed=$((passed + $(echo "$line" | cut -d' ' -f1)))
+    failed=$((failed + $(echo "$line" | cut -d' ' -f3)))
+    [ "$status" -eq 0 ] || [ "$(echo "$line" | cut -d' ' -f3)" -ne 0 ] || { echo "FAIL $name: exit status $status"; failed=$((failed + 1)); }
+}
+
+echo "== builds: header as C89, C99, C++98, C++17; static and linkage"
+check "C89 -pedantic, strict warnings"   sh -c "$CC -std=c89 -pedantic $STRICT -Wstrict-prototypes -Wmissing-prototypes tests/compile/c89.c -o $out/c89 -lm && $out/c89"
+check "C99 (clang if present) strict"    sh -c "$(command -v clang || echo $CC) -std=c99 $STRICT -Wstrict-prototypes -Wmissing-prototypes tests/compile/c89.c -o $out/c99 -lm && $out/c99"
+check "C++98 strict"                     sh -c "$CXX -std=c++98 $STRICT tests/compile/cpp.cpp -o $out/cpp98 && $out/cpp98"
+check "C++17 strict"                     sh -c "$CXX -std=c++17 $STRICT tests/compile/cpp.cpp -o $out/cpp17 && $out/cpp17"
+check "double include"                   sh -c "$CC -std=c99 $STRICT tests/compile/double_include.c -o $out/double -lm && $out/double"
+check "MESHFIX_STATIC in two units"      sh -c "$CC -std=c99 $STRICT tests/compile/static_a.c tests/compile/static_b.c -o $out/static -lm && $out/static"
+check "C implementation, C++ caller"     sh -c "$CC -std=c99 $STRICT -c tests/compile/linkage_impl.c -o $out/impl.o && $CXX $STRICT -c tests/compile/linkage_use.cpp -o $out/use.o && $CXX $out/impl.o $out/use.o -o $out/linkage -lm && $out/linkage"
+
+suite "unit, property and real-model tests" build/test_meshfix
+suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_meshfix_asan
+suite "OpenMesh as oracle" build/test_openmesh
+echo "== command-line tool"
+check "meshfix CLI repairs the demo mesh" sh -c "build/demo_mesh $out/demo.obj >/dev/null && build/meshfix --quiet $out/demo.obj $out/fixed.ply && build/meshfix --inspect $out/fixed.ply | grep -q 'inconsistent 0' && build/meshfix --inspect $out/fixed.ply | grep -q 'inside-out 0'"
+check "meshfix CLI: one-line error, exit 1 on a bad file" sh -c "printf 'OFF\n999999999 1 0\n' > $out/bad.off; build/meshfix $out/bad.off $out/x.obj 2>$out/err.txt; test \$? -eq 1 && test \$(wc -l < $out/err.txt) -eq 1"
+check "meshfix CLI: every format round-trips" sh -c "for f in obj off stl ply; do build/meshfix --quiet $out/demo.obj $out/rt.\$f && build/meshfix --inspect $out/rt.\$f | grep -q 'triangles 8064' || exit 1; done"
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
