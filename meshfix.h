@@ -360,6 +360,7 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #define MESHFIX__TRI_DEGENERATE 2u
 #define MESHFIX__TRI_FLIP       4u /* final decision */
 #define MESHFIX__TRI_CORNER_SEEN 8u /* << corner: fan walk visited corner 0, 1, 2 */
+#define MESHFIX__TRI_DUPLICATE 64u /* same vertex set as a lower triangle */
 /* patch bits */
 #define MESHFIX__PATCH_OPEN           1u /* a boundary edge or an odd share of a ring */
 #define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
@@ -372,7 +373,7 @@ typedef char meshfix__unsigned_int_is_32_bits[sizeof(unsigned int) == 4 ? 1 : -1
 /* ===== >>memory ===== */
 
 typedef struct meshfix__plan {
-    size_t mate, sorted, tri_bits, vertex_work, patch_start, patch_link, patch_bits;
+    size_t mate, work, tri_bits, vertex_work, patch_start, patch_link, patch_bits;
     size_t total;
 } meshfix__plan;
 
@@ -389,9 +390,10 @@ MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t eleme
     return 1;
 }
 
-/* One block holds every array. The sort buffer `sorted` is reused by the
-   flood fill for its queue and patch ids (8 of its 12 bytes per triangle),
-   and `mate` is reused at the end to group patches by component. */
+/* One block holds every array. `work` holds the edge buckets, then the
+   duplicate table, then the flood fill's queue and patch ids; `mate` is
+   reused at the end to group patches by component. On machines where a
+   fresh page costs microseconds, these bytes are most of the time. */
 MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count)
 {
     size_t total = 0, half_edges;
@@ -399,7 +401,7 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
         return 0;
     half_edges = triangle_count * 3;
     return meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
-           meshfix__add_size(&total, half_edges + 16, 4, &plan->sorted) &&
+           meshfix__add_size(&total, half_edges + 16, 4, &plan->work) &&
            meshfix__add_size(&total, triangle_count, 1, &plan->tri_bits) &&
            meshfix__add_size(&total, vertex_range + 1, 4, &plan->vertex_work) &&
            meshfix__add_size(&total, triangle_count + 1, 4, &plan->patch_start) &&
@@ -410,6 +412,11 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
 
 /* ===== >>validate ===== */
 
+typedef struct meshfix__edge_entry {
+    unsigned int high;      /* the higher vertex of the edge */
+    unsigned int half_edge;
+} meshfix__edge_entry;
+
 typedef struct meshfix__mesh {
     const unsigned int *indices;
     size_t triangle_count;
@@ -417,15 +424,15 @@ typedef struct meshfix__mesh {
     const char *positions;        /* NULL when not given */
     size_t stride;
     unsigned int *mate;           /* 3 per triangle */
-    unsigned int *sorted;         /* 3 per triangle, during edge building */
-    unsigned int *queue;          /* triangles in patch order (inside `sorted`) */
-    unsigned int *tri_patch;      /* (inside `sorted`) */
+    unsigned int *work;           /* 3 per triangle: edge buckets, duplicate table, flood fill */
+    unsigned int *queue;          /* triangles in patch order (inside `work`) */
+    unsigned int *tri_patch;      /* (inside `work`) */
     unsigned char *tri_bits;
     unsigned int *vertex_work;    /* sort counts, then vertex marks */
     unsigned int *patch_start;    /* patch p owns queue[patch_start[p] .. patch_start[p + 1]) */
     unsigned int *patch_link;     /* union-find parent, then component id */
     unsigned char *patch_bits;
-    unsigned char *component_bits; /* (inside `sorted`, after tri_patch) */
+    unsigned char *component_bits; /* (inside `work`, after tri_patch) */
     size_t patch_count;
     size_t component_count;
 } meshfix__mesh;
@@ -464,23 +471,6 @@ MESHFIX__PRIVATE int meshfix__is_finite(float x)
     return (x - x) == 0.0f; /* NaN and infinities give NaN */
 }
 
-MESHFIX__PRIVATE unsigned int meshfix__next_half_edge(unsigned int h)
-{
-    return h % 3 == 2 ? h - 2 : h + 1;
-}
-
-MESHFIX__PRIVATE unsigned int meshfix__edge_low(const meshfix__mesh *m, unsigned int h)
-{
-    unsigned int a = m->indices[h], b = m->indices[meshfix__next_half_edge(h)];
-    return a < b ? a : b;
-}
-
-MESHFIX__PRIVATE unsigned int meshfix__edge_high(const meshfix__mesh *m, unsigned int h)
-{
-    unsigned int a = m->indices[h], b = m->indices[meshfix__next_half_edge(h)];
-    return a < b ? b : a;
-}
-
 MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
 {
     size_t t, count = 0;
@@ -493,136 +483,148 @@ MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
     return count;
 }
 
-/* ===== >>sort ===== */
-
-/* Stable counting sort of `count` items by key(item) in [0, range). With
-   items == NULL the items are the half-edges of the non-degenerate triangles
-   in increasing order, so every later tie is broken by half-edge index. */
-typedef unsigned int (*meshfix__key_fn)(const meshfix__mesh *m, unsigned int item);
-
-MESHFIX__PRIVATE void meshfix__counting_sort(const meshfix__mesh *m, unsigned int *out,
-                                             const unsigned int *items, size_t count,
-                                             meshfix__key_fn key, size_t range)
-{
-    unsigned int *offsets = m->vertex_work, sum = 0, h;
-    size_t i, t;
-    MESHFIX_MEMSET(offsets, 0, (range + 1) * sizeof(unsigned int));
-    if (items != NULL) {
-        for (i = 0; i < count; ++i)
-            offsets[key(m, items[i])]++;
-    } else {
-        for (t = 0; t < m->triangle_count; ++t)
-            if (!(m->tri_bits[t] & MESHFIX__TRI_DEGENERATE))
-                for (h = (unsigned int)(3 * t); h < 3 * t + 3; ++h)
-                    offsets[key(m, h)]++;
-    }
-    for (i = 0; i <= range; ++i) {
-        unsigned int c = offsets[i];
-        offsets[i] = sum;
-        sum += c;
-    }
-    if (items != NULL) {
-        for (i = 0; i < count; ++i)
-            out[offsets[key(m, items[i])]++] = items[i];
-    } else {
-        for (t = 0; t < m->triangle_count; ++t)
-            if (!(m->tri_bits[t] & MESHFIX__TRI_DEGENERATE))
-                for (h = (unsigned int)(3 * t); h < 3 * t + 3; ++h)
-                    out[offsets[key(m, h)]++] = h;
-    }
-}
-
-/* ===== >>duplicates ===== */
-
-/* Triangle keys: its vertices sorted, lowest / middle / highest. */
-MESHFIX__PRIVATE void meshfix__sorted_triangle(const meshfix__mesh *m, unsigned int t, unsigned int s[3])
-{
-    unsigned int a = m->indices[3 * t], b = m->indices[3 * t + 1], c = m->indices[3 * t + 2], x;
-    if (a > b) { x = a; a = b; b = x; }
-    if (b > c) { x = b; b = c; c = x; }
-    if (a > b) { x = a; a = b; b = x; }
-    s[0] = a; s[1] = b; s[2] = c;
-}
-
-MESHFIX__PRIVATE unsigned int meshfix__triangle_low(const meshfix__mesh *m, unsigned int t)
-{
-    unsigned int s[3];
-    meshfix__sorted_triangle(m, t, s);
-    return s[0];
-}
-
-MESHFIX__PRIVATE unsigned int meshfix__triangle_middle(const meshfix__mesh *m, unsigned int t)
-{
-    unsigned int s[3];
-    meshfix__sorted_triangle(m, t, s);
-    return s[1];
-}
-
-MESHFIX__PRIVATE unsigned int meshfix__triangle_high(const meshfix__mesh *m, unsigned int t)
-{
-    unsigned int s[3];
-    meshfix__sorted_triangle(m, t, s);
-    return s[2];
-}
-
-/* Three radix passes order the triangles by vertex set; equal neighbours
-   in that order are duplicates. Uses the `sorted` buffer as two arrays. */
-MESHFIX__PRIVATE size_t meshfix__count_duplicates(meshfix__mesh *m)
-{
-    unsigned int *a = m->sorted, *b = m->sorted + m->triangle_count;
-    size_t t, n = 0, duplicates = 0;
-    for (t = 0; t < m->triangle_count; ++t)
-        if (!(m->tri_bits[t] & MESHFIX__TRI_DEGENERATE))
-            a[n++] = (unsigned int)t;
-    meshfix__counting_sort(m, b, a, n, meshfix__triangle_high, m->vertex_range);
-    meshfix__counting_sort(m, a, b, n, meshfix__triangle_middle, m->vertex_range);
-    meshfix__counting_sort(m, b, a, n, meshfix__triangle_low, m->vertex_range);
-    for (t = 1; t < n; ++t) {
-        unsigned int p[3], q[3];
-        meshfix__sorted_triangle(m, b[t - 1], p);
-        meshfix__sorted_triangle(m, b[t], q);
-        duplicates += (size_t)(p[0] == q[0] && p[1] == q[1] && p[2] == q[2]);
-    }
-    return duplicates;
-}
-
 /* ===== >>edges ===== */
 
 typedef struct meshfix__edge_counts {
     size_t edges, boundary, manifold, non_manifold;
 } meshfix__edge_counts;
 
-/* Groups half-edges by undirected edge (sorted by high vertex, then
-   stably by low vertex) and links each group: mate pairs, rings, NONE. */
+MESHFIX__PRIVATE unsigned int meshfix__edge_high(const meshfix__mesh *m, unsigned int h)
+{
+    unsigned int a = m->indices[h], b = m->indices[h % 3 == 2 ? h - 2 : h + 1];
+    return a < b ? b : a;
+}
+
+MESHFIX__PRIVATE int meshfix__entry_less(const meshfix__edge_entry *a, const meshfix__edge_entry *b)
+{
+    return a->high < b->high || (a->high == b->high && a->half_edge < b->half_edge);
+}
+
+MESHFIX__PRIVATE int meshfix__half_edge_less(const meshfix__mesh *m, unsigned int a, unsigned int b)
+{
+    unsigned int ka = meshfix__edge_high(m, a), kb = meshfix__edge_high(m, b);
+    return ka < kb || (ka == kb && a < b);
+}
+
+MESHFIX__PRIVATE void meshfix__sift_down(const meshfix__mesh *m, unsigned int *e, size_t root, size_t n)
+{
+    for (;;) {
+        size_t child = 2 * root + 1;
+        unsigned int x;
+        if (child >= n)
+            return;
+        if (child + 1 < n && meshfix__half_edge_less(m, e[child], e[child + 1]))
+            child++;
+        if (!meshfix__half_edge_less(m, e[root], e[child]))
+            return;
+        x = e[root];
+        e[root] = e[child];
+        e[child] = x;
+        root = child;
+    }
+}
+
+/* Links the half-edges of one undirected edge (a run of a sorted bucket):
+   a pair becomes mates, three or more a ring in increasing order. */
+MESHFIX__PRIVATE void meshfix__link_edge(meshfix__mesh *m, const unsigned int *run, size_t n,
+                                         meshfix__edge_counts *counts)
+{
+    size_t k;
+    counts->edges++;
+    if (n == 1) {
+        counts->boundary++;
+    } else if (n == 2) {
+        counts->manifold++;
+        m->mate[run[0]] = run[1];
+        m->mate[run[1]] = run[0];
+    } else {
+        counts->non_manifold++;
+        for (k = 0; k < n; ++k)
+            m->mate[run[k]] = run[k + 1 < n ? k + 1 : 0] | MESHFIX__RING;
+    }
+}
+
+/* Sorts a bucket of half-edges by (higher vertex, half-edge) and links
+   each run of one edge. A bucket holds the edges of one vertex, a handful
+   in a mesh: sorted as (key, id) pairs on the stack. A vertex shared by
+   thousands of triangles takes heapsort in place, O(k log k) with no
+   memory. The order is total, so both give the same links. */
+#define MESHFIX__SMALL_BUCKET 32
+MESHFIX__PRIVATE void meshfix__link_bucket(meshfix__mesh *m, unsigned int *ids, size_t n,
+                                           meshfix__edge_counts *counts)
+{
+    size_t i, j;
+    if (n <= MESHFIX__SMALL_BUCKET) {
+        meshfix__edge_entry e[MESHFIX__SMALL_BUCKET];
+        for (i = 0; i < n; ++i) {
+            meshfix__edge_entry x;
+            x.high = meshfix__edge_high(m, ids[i]);
+            x.half_edge = ids[i];
+            for (j = i; j > 0 && meshfix__entry_less(&x, &e[j - 1]); --j)
+                e[j] = e[j - 1];
+            e[j] = x;
+        }
+        for (i = 0; i < n; ++i)
+            ids[i] = e[i].half_edge;
+        for (i = 0; i < n; i = j) {
+            for (j = i + 1; j < n && e[j].high == e[i].high; ++j) {
+            }
+            meshfix__link_edge(m, ids + i, j - i, counts);
+        }
+        return;
+    }
+    for (i = n / 2; i-- > 0;)
+        meshfix__sift_down(m, ids, i, n);
+    for (i = n - 1; i > 0; --i) {
+        unsigned int x = ids[0];
+        ids[0] = ids[i];
+        ids[i] = x;
+        meshfix__sift_down(m, ids, 0, i);
+    }
+    for (i = 0; i < n; i = j) {
+        unsigned int high = meshfix__edge_high(m, ids[i]);
+        for (j = i + 1; j < n && meshfix__edge_high(m, ids[j]) == high; ++j) {
+        }
+        meshfix__link_edge(m, ids + i, j - i, counts);
+    }
+}
+
+/* Groups the half-edges by undirected edge: a counting sort into one
+   bucket per lower vertex (each bucket in increasing half-edge order),
+   then each bucket sorted by its higher vertex and cut into runs. */
 MESHFIX__PRIVATE void meshfix__build_edges(meshfix__mesh *m, meshfix__edge_counts *counts)
 {
-    unsigned int *by_high = m->mate, *sorted = m->sorted;
-    size_t n = 0, t, i, j;
-    for (t = 0; t < m->triangle_count; ++t)
-        n += (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE) ? 0 : 3;
-    meshfix__counting_sort(m, by_high, NULL, n, meshfix__edge_high, m->vertex_range);
-    meshfix__counting_sort(m, sorted, by_high, n, meshfix__edge_low, m->vertex_range);
-    MESHFIX_MEMSET(m->mate, 0xFF, 3 * m->triangle_count * sizeof(unsigned int));
-    MESHFIX_MEMSET(counts, 0, sizeof(*counts));
-    for (i = 0; i < n; i = j) {
-        unsigned int low = meshfix__edge_low(m, sorted[i]), high = meshfix__edge_high(m, sorted[i]);
-        for (j = i + 1; j < n && meshfix__edge_low(m, sorted[j]) == low &&
-                        meshfix__edge_high(m, sorted[j]) == high; ++j) {
-        }
-        counts->edges++;
-        if (j - i == 1) {
-            counts->boundary++;
-        } else if (j - i == 2) {
-            counts->manifold++;
-            m->mate[sorted[i]] = sorted[i + 1];
-            m->mate[sorted[i + 1]] = sorted[i];
-        } else {
-            size_t k;
-            counts->non_manifold++;
-            for (k = i; k < j; ++k)
-                m->mate[sorted[k]] = (k + 1 < j ? sorted[k + 1] : sorted[i]) | MESHFIX__RING;
+    unsigned int *end = m->vertex_work, *ids = m->work, sum = 0, k;
+    size_t t, v, begin = 0;
+    MESHFIX_MEMSET(end, 0, (m->vertex_range + 1) * sizeof(unsigned int));
+    for (t = 0; t < m->triangle_count; ++t) {
+        const unsigned int *tri = m->indices + 3 * t;
+        if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
+            continue;
+        for (k = 0; k < 3; ++k) {
+            unsigned int a = tri[k], b = tri[k == 2 ? 0 : k + 1];
+            end[a < b ? a : b]++;
         }
     }
+    for (v = 0; v <= m->vertex_range; ++v) {
+        unsigned int n = end[v];
+        end[v] = sum;
+        sum += n;
+    }
+    for (t = 0; t < m->triangle_count; ++t) {
+        const unsigned int *tri = m->indices + 3 * t;
+        if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
+            continue;
+        for (k = 0; k < 3; ++k) {
+            unsigned int a = tri[k], b = tri[k == 2 ? 0 : k + 1];
+            ids[end[a < b ? a : b]++] = (unsigned int)(3 * t) + k;
+        }
+    }
+    /* end[v] is now where bucket v ends */
+    MESHFIX_MEMSET(m->mate, 0xFF, 3 * m->triangle_count * sizeof(unsigned int));
+    MESHFIX_MEMSET(counts, 0, sizeof(*counts));
+    for (v = 0; v < m->vertex_range; begin = end[v++])
+        meshfix__link_bucket(m, ids + begin, end[v] - begin, counts);
 }
 
 MESHFIX__PRIVATE int meshfix__is_mate(unsigned int link)
@@ -646,6 +648,87 @@ MESHFIX__PRIVATE int meshfix__is_ring_last(const meshfix__mesh *m, unsigned int 
 MESHFIX__PRIVATE int meshfix__same_direction(const meshfix__mesh *m, unsigned int h, unsigned int g)
 {
     return m->indices[h] == m->indices[g];
+}
+
+/* ===== >>duplicates ===== */
+
+MESHFIX__PRIVATE void meshfix__sorted_triangle(const meshfix__mesh *m, size_t t, unsigned int s[3])
+{
+    unsigned int a = m->indices[3 * t], b = m->indices[3 * t + 1], c = m->indices[3 * t + 2], x;
+    if (a > b) { x = a; a = b; b = x; }
+    if (b > c) { x = b; b = c; c = x; }
+    if (a > b) { x = a; a = b; b = x; }
+    s[0] = a; s[1] = b; s[2] = c;
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__hash_triple(const unsigned int s[3])
+{
+    unsigned int h = s[0] * 0x9E3779B1u;
+    h = (h ^ (h >> 15) ^ s[1]) * 0x85EBCA77u;
+    h = (h ^ (h >> 13) ^ s[2]) * 0xC2B2AE3Du;
+    return h ^ (h >> 16);
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__apex(const meshfix__mesh *m, unsigned int h)
+{
+    return m->indices[h % 3 == 0 ? h + 2 : h - 1];
+}
+
+MESHFIX__PRIVATE void meshfix__mark_duplicate(meshfix__mesh *m, size_t t)
+{
+    m->tri_bits[t] = (unsigned char)(m->tri_bits[t] | MESHFIX__TRI_DUPLICATE);
+}
+
+/* Triangles with the same vertex set share all three edges. If one of
+   those edges is manifold the two are its pair, with the same apex; if
+   none is, all three edges are non-manifold, which is rare, and those
+   triangles go through a table keyed by their sorted vertices (in the
+   free `work` buffer). The table only marks triangles; counts do not
+   depend on where anything landed in it. */
+MESHFIX__PRIVATE int meshfix__all_edges_non_manifold(const meshfix__mesh *m, size_t t)
+{
+    return meshfix__is_ring(m->mate[3 * t]) && meshfix__is_ring(m->mate[3 * t + 1]) &&
+           meshfix__is_ring(m->mate[3 * t + 2]);
+}
+
+MESHFIX__PRIVATE size_t meshfix__count_duplicates(meshfix__mesh *m)
+{
+    unsigned int *slots = m->work, h, half_edges = (unsigned int)(3 * m->triangle_count);
+    size_t size = 4, mask, t, count = 0, candidates = 0;
+    for (h = 0; h < half_edges; ++h) {
+        unsigned int g = m->mate[h];
+        if (meshfix__is_mate(g) && h < g && meshfix__apex(m, h) == meshfix__apex(m, g))
+            meshfix__mark_duplicate(m, g / 3);
+    }
+    for (t = 0; t < m->triangle_count; ++t)
+        candidates += (size_t)meshfix__all_edges_non_manifold(m, t);
+    /* at most two thirds full, and never more than the 3 per triangle of `work` */
+    while (size < candidates + candidates / 2)
+        size *= 2;
+    mask = size - 1;
+    if (candidates != 0)
+        MESHFIX_MEMSET(slots, 0xFF, size * sizeof(unsigned int));
+    for (t = 0; t < m->triangle_count && candidates != 0; ++t) {
+        unsigned int key[3], other[3];
+        size_t i;
+        if (!meshfix__all_edges_non_manifold(m, t))
+            continue;
+        meshfix__sorted_triangle(m, t, key);
+        for (i = meshfix__hash_triple(key) & mask;; i = (i + 1) & mask) {
+            if (slots[i] == MESHFIX__NONE) {
+                slots[i] = (unsigned int)t;
+                break;
+            }
+            meshfix__sorted_triangle(m, slots[i], other);
+            if (other[0] == key[0] && other[1] == key[1] && other[2] == key[2]) {
+                meshfix__mark_duplicate(m, t);
+                break;
+            }
+        }
+    }
+    for (t = 0; t < m->triangle_count; ++t)
+        count += (size_t)((m->tri_bits[t] & MESHFIX__TRI_DUPLICATE) != 0);
+    return count;
 }
 
 /* ===== >>fans ===== */
@@ -713,10 +796,11 @@ MESHFIX__PRIVATE size_t meshfix__count_non_manifold_vertices(meshfix__mesh *m)
 MESHFIX__PRIVATE unsigned int meshfix__neighbours(meshfix__mesh *m, unsigned int t, unsigned int patch,
                                                  unsigned int h_out[3])
 {
-    unsigned int h, n = 0, i, j;
+    unsigned int h, n = 0, i, j, u[3];
     for (h = 3 * t; h < 3 * t + 3; ++h) {
         unsigned int g = m->mate[h];
         if (meshfix__is_mate(g)) {
+            u[n] = g / 3;
             h_out[n++] = h;
             continue;
         }
@@ -725,10 +809,12 @@ MESHFIX__PRIVATE unsigned int meshfix__neighbours(meshfix__mesh *m, unsigned int
             m->patch_bits[patch] |= MESHFIX__PATCH_OPEN;
     }
     for (i = 1; i < n; ++i)
-        for (j = i; j > 0 && m->mate[h_out[j - 1]] / 3 > m->mate[h_out[j]] / 3; --j) {
-            unsigned int x = h_out[j];
+        for (j = i; j > 0 && u[j - 1] > u[j]; --j) {
+            unsigned int x = h_out[j], y = u[j];
             h_out[j] = h_out[j - 1];
+            u[j] = u[j - 1];
             h_out[j - 1] = x;
+            u[j - 1] = y;
         }
     return n;
 }
@@ -846,17 +932,13 @@ typedef struct meshfix__patch_sums {
     size_t zero_area;
 } meshfix__patch_sums;
 
-MESHFIX__PRIVATE int meshfix__load_triangle(const meshfix__mesh *m, unsigned int t, double p[3][3])
+MESHFIX__PRIVATE void meshfix__load_corner(const meshfix__mesh *m, unsigned int vertex, const double origin[3],
+                                          double out[3])
 {
-    int corner, axis, finite = 1;
-    for (corner = 0; corner < 3; ++corner) {
-        const float *v = meshfix__position(m, m->indices[3 * t + (unsigned int)corner]);
-        for (axis = 0; axis < 3; ++axis) {
-            finite &= meshfix__is_finite(v[axis]);
-            p[corner][axis] = (double)v[axis];
-        }
-    }
-    return finite;
+    const float *v = meshfix__position(m, vertex);
+    out[0] = (double)v[0] - origin[0];
+    out[1] = (double)v[1] - origin[1];
+    out[2] = (double)v[2] - origin[2];
 }
 
 MESHFIX__PRIVATE void meshfix__sum_patch(const meshfix__mesh *m, unsigned int patch, meshfix__patch_sums *s)
@@ -864,39 +946,43 @@ MESHFIX__PRIVATE void meshfix__sum_patch(const meshfix__mesh *m, unsigned int pa
     unsigned int i, end = m->patch_start[patch + 1];
     double origin[3] = {0, 0, 0};
     MESHFIX_MEMSET(s, 0, sizeof(*s));
-    if (m->positions != NULL) {
-        const float *o = meshfix__position(m, m->indices[3 * m->queue[m->patch_start[patch]]]);
-        origin[0] = o[0]; origin[1] = o[1]; origin[2] = o[2];
+    if (m->positions == NULL) {
+        for (i = m->patch_start[patch]; i < end; ++i) {
+            if (m->tri_bits[m->queue[i]] & MESHFIX__TRI_RELATIVE)
+                s->weight_reversed += 1.0;
+            else
+                s->weight_kept += 1.0;
+        }
+        return;
     }
+    /* volumes about a vertex of the patch, not the far-away origin, so
+       closed shells keep their precision */
+    meshfix__load_corner(m, m->indices[3 * m->queue[m->patch_start[patch]]], origin, origin);
     for (i = m->patch_start[patch]; i < end; ++i) {
         unsigned int t = m->queue[i];
-        double weight = 1.0, volume = 0.0, p[3][3];
-        if (m->positions != NULL) {
-            double a[3], b[3], c[3], n[3], area;
-            int k;
-            int finite = meshfix__load_triangle(m, t, p);
-            for (k = 0; k < 3; ++k) {
-                a[k] = p[0][k] - origin[k];
-                b[k] = p[1][k] - origin[k];
-                c[k] = p[2][k] - origin[k];
-            }
-            n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
-            n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
-            n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-            area = finite ? 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) : 0.0;
-            if (area > 0.0)
-                volume = (a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
-                          a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
-            s->zero_area += (size_t)!(area > 0.0);
-            s->area += area;
-            weight = area;
+        const unsigned int *tri = m->indices + 3 * (size_t)t;
+        double a[3], b[3], c[3], n[3], area, volume;
+        meshfix__load_corner(m, tri[0], origin, a);
+        meshfix__load_corner(m, tri[1], origin, b);
+        meshfix__load_corner(m, tri[2], origin, c);
+        n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+        n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+        n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        area = 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        /* a NaN or infinite coordinate leaves a NaN or infinite area: weight 0 */
+        if (!(area > 0.0 && area - area == 0.0)) {
+            s->zero_area++;
+            continue;
         }
+        volume = (a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+                  a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+        s->area += area;
         s->volume_given += volume;
         if (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) {
-            s->weight_reversed += weight;
+            s->weight_reversed += area;
             s->volume_relative -= volume;
         } else {
-            s->weight_kept += weight;
+            s->weight_kept += area;
             s->volume_relative += volume;
         }
     }
@@ -1134,10 +1220,10 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
     m->positions = (const char *)positions;
     m->stride = stride;
     m->mate = (unsigned int *)(void *)(block + plan->mate);
-    m->sorted = (unsigned int *)(void *)(block + plan->sorted);
-    m->queue = m->sorted;
-    m->tri_patch = m->sorted + m->triangle_count;
-    m->component_bits = (unsigned char *)(m->sorted + 2 * m->triangle_count);
+    m->work = (unsigned int *)(void *)(block + plan->work);
+    m->queue = m->work;
+    m->tri_patch = m->queue + m->triangle_count;
+    m->component_bits = (unsigned char *)(m->queue + 2 * m->triangle_count);
     m->tri_bits = block + plan->tri_bits;
     m->vertex_work = (unsigned int *)(void *)(block + plan->vertex_work);
     m->patch_start = (unsigned int *)(void *)(block + plan->patch_start);
@@ -1145,21 +1231,27 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
     m->patch_bits = block + plan->patch_bits;
 }
 
-/* Stages 2 to 5 on a bound mesh; fills r and the component outputs. */
-MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshfix_options *o, meshfix_report *r)
+/* Stages 2 to 5 on a bound mesh; fills r and the component outputs. The
+   counts that only describe the mesh (duplicates, non-manifold vertices,
+   inconsistent edges, Euler characteristic) are skipped when `full` is 0:
+   the caller asked for neither a report nor components. */
+MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshfix_options *o, int full,
+                                       meshfix_report *r)
 {
     meshfix__edge_counts edges;
     size_t c, n;
 
     r->triangles_degenerate = meshfix__mark_degenerate(m);
-    r->triangles_duplicate = meshfix__count_duplicates(m);
     meshfix__build_edges(m, &edges);
     r->edges = edges.edges;
     r->edges_boundary = edges.boundary;
     r->edges_manifold = edges.manifold;
     r->edges_non_manifold = edges.non_manifold;
-    r->edges_inconsistent_input = meshfix__count_inconsistent(m, 0);
-    r->vertices_non_manifold = meshfix__count_non_manifold_vertices(m);
+    if (full) {
+        r->triangles_duplicate = meshfix__count_duplicates(m);
+        r->edges_inconsistent_input = meshfix__count_inconsistent(m, 0);
+        r->vertices_non_manifold = meshfix__count_non_manifold_vertices(m);
+    }
 
     meshfix__flood_patches(m);
     meshfix__join_components(m);
@@ -1175,6 +1267,8 @@ MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshf
     if (policy >= 0)
         meshfix__debug_check_orientation(m);
 #endif
+    if (!full)
+        return;
     r->edges_inconsistent = policy >= 0 ? meshfix__count_inconsistent(m, 1) : r->edges_inconsistent_input;
     meshfix__count_component_edges(m, o);
     r->euler_characteristic = (long)meshfix__count_component_vertices(m, o, r) - (long)r->edges +
@@ -1264,7 +1358,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
     meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range);
 
     /* 2-5. edges, patches, components, policy */
-    meshfix__analyze(&m, policy, options, &r);
+    meshfix__analyze(&m, policy, options, report != NULL || (options != NULL && options->components != NULL), &r);
 
     /* 6. write: nothing can fail from here on */
     if (destination != NULL && policy >= 0)
