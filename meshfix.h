@@ -62,9 +62,10 @@
 
    ALGORITHM (orient and inspect share stages 1-5)
        1. validate: counts, pointers, stride, every index < vertex_count.
-       2. edges: two stable counting-sort passes group the 3 half-edges of
-          every triangle by undirected edge; manifold half-edges get their
-          mate, edges of 3+ triangles are linked into a ring.
+       2. edges: a counting sort puts every half-edge in the bucket of its
+          lower vertex; each bucket is sorted by its higher vertex, so the
+          half-edges of one edge lie together: a pair become mates, three
+          or more are linked into a ring, a single one is a boundary.
        3. patches: breadth-first flood fill across manifold edges from the
           lowest unvisited triangle; each triangle gets its flip relative to
           the patch seed (a neighbour traversing the shared edge in the same
@@ -85,9 +86,16 @@
             AUTO      OUTWARD with positions, MAJORITY without.
        6. write: copy indices to destination and swap the last two indices
           of each flipped triangle.
-       Time O(index_count + vertex_count), no hashing, no comparison sort.
+       Time O(index_count + vertex_count) (a vertex of k edges costs
+       O(k log k)); hashing only for triangles whose three edges are all
+       non-manifold, and only to count duplicates.
        Memory: one block of meshfix_scratch_size(vertex_count, index_count)
-       bytes, about 34 bytes per triangle + 4 per vertex, freed before return.
+       bytes, 34 bytes per triangle + 4 per vertex, freed before return;
+       none at all when the caller passes options.scratch.
+       Speed (make bench, one run, same mesh, 1M triangles): the
+       topology-only repair is ~4x faster than OpenMesh building its
+       half-edge structure with both on warm memory; a call with a report
+       takes 1.3x to 2x the time of the repair alone.
        References: the edge-map flood fill of the glTF winding auto-fix;
        P. Borodin, G. Zachmann, R. Klein, "Consistent Normal Orientation for
        Polygonal Meshes" (patches as the unit of orientation).
@@ -255,7 +263,9 @@ typedef struct meshfix_report {
    vertex_positions may be NULL for SEED, MAJORITY and AUTO (counts instead
    of areas); otherwise vertex_count vertices of vertex_positions_stride
    bytes (a multiple of 4, at least 12), x y z floats first.
-   options and report can be NULL. */
+   options and report can be NULL. Without a report (and without
+   options->components) the descriptive counts are skipped, which saves a
+   quarter to a half of the time (make bench). */
 MESHFIX_API meshfix_result meshfix_orient(unsigned int *destination,
                                           const unsigned int *indices, size_t index_count,
                                           const float *vertex_positions, size_t vertex_count,

@@ -92,7 +92,12 @@ int main(int argc, char **argv)
             options.policy = (meshfix_policy)p;
             ++i;
         } else if (strcmp(argv[i], "--mark") == 0 && i + 1 < argc) {
-            mark = argv[++i];
+            size_t n = strlen(argv[++i]);
+            mark = argv[i];
+            if (n < 4 || strcmp(mark + n - 4, ".ply") != 0) {
+                fprintf(stderr, "meshfix: --mark writes PLY (face colours): give a .ply file\n");
+                return 1;
+            }
         } else if (strcmp(argv[i], "--quiet") == 0) {
             quiet = 1;
         } else if (strcmp(argv[i], "--inspect") == 0) {
