@@ -35,7 +35,7 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@$(B)/demo_mesh $(B)/demo_input.obj
 	@echo
 	@echo "--- the plain flood fill (policy seed) follows its first triangle, one of the reversed 70%:"
-	@$(B)/meshfix --policy seed $(B)/demo_input.obj $(B)/demo_seed.obj | tail -n 9
+	@$(B)/meshfix --policy seed $(B)/demo_input.obj $(B)/demo_seed.obj | sed -n '/^repair/,$$p'
 	@echo
 	@echo "--- meshfix's default (policy auto): each closed shell faces out:"
 	@$(B)/meshfix $(B)/demo_input.obj $(B)/demo_fixed.obj --mark $(B)/demo_marked.ply

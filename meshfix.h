@@ -233,7 +233,7 @@ typedef struct meshfix_report {
     size_t edges_inconsistent_input; /* the same count before repair */
     size_t patches;
     size_t patches_closed;
-    size_t patches_inside_out;    /* closed orientable patches with clearly negative signed volume */
+    size_t patches_inside_out;    /* closed patches, wound one way, with clearly negative volume */
     size_t components;
     size_t components_closed;     /* every edge manifold */
     size_t components_non_orientable;
@@ -940,6 +940,7 @@ typedef struct meshfix__patch_sums {
     double volume_given;
     double volume_relative;
     size_t zero_area;
+    size_t reversed;        /* triangles with relative bit 1: the patch is not consistent as given */
 } meshfix__patch_sums;
 
 MESHFIX__PRIVATE void meshfix__load_corner(const meshfix__mesh *m, unsigned int vertex, const double origin[3],
@@ -956,13 +957,11 @@ MESHFIX__PRIVATE void meshfix__sum_patch(const meshfix__mesh *m, unsigned int pa
     unsigned int i, end = m->patch_start[patch + 1];
     double origin[3] = {0, 0, 0};
     MESHFIX_MEMSET(s, 0, sizeof(*s));
+    for (i = m->patch_start[patch]; i < end; ++i)
+        s->reversed += (size_t)(m->tri_bits[m->queue[i]] & MESHFIX__TRI_RELATIVE);
     if (m->positions == NULL) {
-        for (i = m->patch_start[patch]; i < end; ++i) {
-            if (m->tri_bits[m->queue[i]] & MESHFIX__TRI_RELATIVE)
-                s->weight_reversed += 1.0;
-            else
-                s->weight_kept += 1.0;
-        }
+        s->weight_reversed = (double)s->reversed;
+        s->weight_kept = (double)(end - m->patch_start[patch] - s->reversed);
         return;
     }
     /* volumes about a vertex of the patch, not the far-away origin, so
@@ -1191,7 +1190,9 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         r->area += s.area;
         r->signed_volume += volume;
         r->patches_closed += (size_t)!(bits & MESHFIX__PATCH_OPEN);
-        r->patches_inside_out += (size_t)(volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area));
+        /* inside-out only means something for a patch wound one way throughout */
+        if (policy >= 0 || s.reversed == 0)
+            r->patches_inside_out += (size_t)(volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area));
         if (out != NULL)
             meshfix__add_patch_to_component(m, p, &s, volume, out);
         m->component_bits[m->patch_link[p]] |= (unsigned char)bits;

@@ -1,5 +1,6 @@
-/* Writes the demo input: a sphere with 70% of its triangles reversed and a
-   torus beside it turned completely inside-out, as one OBJ file.
+/* Writes the demo input: a sphere with 70% of its triangles reversed (its
+   first triangle among them, as the plain flood fill's seed) and a torus
+   beside it turned completely inside-out, as one OBJ file.
    usage: demo_mesh OUTPUT.obj */
 #define MESHIO_IMPLEMENTATION
 #include "meshio.h"
@@ -20,6 +21,11 @@ int main(int argc, char **argv)
     if (!gen_sphere(&sphere, 40, 64, 0, 0, 0, 1) || !gen_torus(&torus, 64, 24, 1.2f, 0.35f))
         return 1;
     sphere_flipped = gen_flip_random(&sphere, 0.7, 2026, NULL);
+    if (sphere.indices[1] == 1) { /* triangle 0 is (0, 1, 2): make it one of the reversed */
+        sphere.indices[1] = sphere.indices[2];
+        sphere.indices[2] = 1;
+        sphere_flipped++;
+    }
     for (v = 0; v < torus.vertex_count; ++v)
         torus.positions[3 * v] += 3.0f;
     for (t = 0; t < torus.index_count / 3; ++t) {
