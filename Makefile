@@ -6,9 +6,9 @@ WARN = -Wall -Wextra -Wpedantic -Wshadow
 SANITIZE = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 OPENMESH = -lOpenMeshCore
 B = build
-HEADERS = meshfix.h examples/meshio.h examples/meshgen.h
+HEADERS = meshfix.h examples/meshio.h examples/meshgen.h examples/sdfmesh.h
 
-all: $(B)/meshfix
+all: $(B)/meshfix $(B)/sdf_demo
 
 $(B):
 	mkdir -p $(B)
@@ -24,6 +24,15 @@ $(B)/test_meshfix: tests/test_meshfix.c $(HEADERS) | $(B)
 
 $(B)/test_meshfix_asan: tests/test_meshfix.c $(HEADERS) | $(B)
 	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ tests/test_meshfix.c -lm
+
+$(B)/sdf_demo: examples/sdf_demo.c $(HEADERS) | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/sdf_demo.c -lm
+
+$(B)/test_sdf: tests/test_sdf.c $(HEADERS) | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_sdf.c -lm
+
+$(B)/test_sdf_asan: tests/test_sdf.c $(HEADERS) | $(B)
+	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ tests/test_sdf.c -lm
 
 $(B)/test_openmesh: tests/test_openmesh.cpp $(HEADERS) | $(B)
 	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -o $@ tests/test_openmesh.cpp $(OPENMESH)
@@ -42,7 +51,8 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@echo
 	@echo "wrote $(B)/demo_fixed.obj and $(B)/demo_marked.ply (flipped faces red; open it in MeshLab or Blender)"
 
-test: $(B)/meshfix $(B)/demo_mesh $(B)/test_meshfix $(B)/test_meshfix_asan $(B)/test_openmesh
+test: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(B)/test_meshfix $(B)/test_meshfix_asan $(B)/test_sdf $(B)/test_sdf_asan \
+      $(B)/test_openmesh
 	@CC="$(CC)" CXX="$(CXX)" bash tests/run_all.sh
 
 bench: $(B)/bench
@@ -51,4 +61,7 @@ bench: $(B)/bench
 clean:
 	rm -rf $(B)
 
-.PHONY: all demo test bench clean
+sdf-demo: $(B)/sdf_demo
+	$(B)/sdf_demo $(B)/sdf_demo.obj
+
+.PHONY: all demo sdf-demo test bench clean

@@ -83,6 +83,14 @@
                       use MAJORITY. Each closed shell faces out on its own:
                       a cavity shell inside another is also turned outward
                       (nesting needs the ray caster, not in this version);
+            SDF       for meshes extracted from a signed distance function:
+                      the area-weighted vote of the SDF gradient over the
+                      patch's triangles; per triangle (sdf_mode), the plain
+                      rule: each triangle faces along the gradient at its
+                      centroid. Per patch stays right where single samples
+                      fail: triangles with no normal (zero area) and
+                      triangles at sharp edges whose centroid gradient lies
+                      in their plane (see tests/test_sdf.c);
             AUTO      OUTWARD with positions, MAJORITY without.
        6. write: copy indices to destination and swap the last two indices
           of each flipped triangle.
@@ -90,7 +98,7 @@
        O(k log k)); hashing only for triangles whose three edges are all
        non-manifold, and only to count duplicates.
        Memory: one block of meshfix_scratch_size(vertex_count, index_count)
-       bytes, 34 bytes per triangle + 4 per vertex, freed before return;
+       bytes, 35 bytes per triangle + 4 per vertex, freed before return;
        none at all when the caller passes options.scratch.
        Speed (make bench, one run, same mesh, 1M triangles): the
        topology-only repair is ~4x faster than OpenMesh building its
@@ -124,7 +132,7 @@
 
    VERSION HISTORY
        0.1.0  first release: inspect, flood fill with seed / majority /
-              outward / auto policies, check, scratch-size query.
+              outward / auto / SDF policies, check, scratch-size query.
 */
 #ifndef MESHFIX_H
 #define MESHFIX_H
@@ -176,8 +184,15 @@ typedef enum meshfix_policy {
     MESHFIX_POLICY_SEED,     /* the patch's lowest triangle keeps its winding */
     MESHFIX_POLICY_MAJORITY, /* the side that flips less area (or fewer triangles) */
     MESHFIX_POLICY_OUTWARD,  /* closed patches by signed volume, open ones by MAJORITY */
+    MESHFIX_POLICY_SDF,      /* along the gradient of options.sdf (needs positions and sdf) */
     MESHFIX_POLICY_COUNT
 } meshfix_policy;
+
+/* How MESHFIX_POLICY_SDF decides. */
+typedef enum meshfix_sdf_mode {
+    MESHFIX_SDF_PER_PATCH = 0, /* each patch by an area-weighted vote of its triangles */
+    MESHFIX_SDF_PER_TRIANGLE   /* each triangle by the gradient at its centroid alone */
+} meshfix_sdf_mode;
 
 typedef struct meshfix_allocator {
     void *(*alloc_fn)(size_t size, void *user_data);
@@ -212,6 +227,18 @@ typedef struct meshfix_options {
     unsigned int *patch_ids;       /* optional out: index_count / 3 patch ids, 0xFFFFFFFF = degenerate */
     meshfix_component *components; /* optional out: the first components_capacity components */
     size_t components_capacity;
+    /* MESHFIX_POLICY_SDF: a signed distance function, negative inside. Its
+       gradient at a triangle's centroid says which way is out. Without
+       sdf_gradient it is taken by central differences, 6 calls per
+       triangle, with a step of sdf_step, or when that is 0 a quarter of
+       the triangle's longest edge (small enough to stay near the triangle)
+       but at least 32 float steps of the centroid's coordinates
+       (4e-6 * (1 + max |c|), so a sliver's stencil does not collapse). */
+    float (*sdf)(const float position[3], void *user);
+    void (*sdf_gradient)(const float position[3], float gradient[3], void *user); /* optional */
+    void *sdf_user;
+    float sdf_step;
+    meshfix_sdf_mode sdf_mode;
 } meshfix_options;
 
 /* What a call found. For meshfix_orient it describes the mesh as returned
@@ -240,6 +267,8 @@ typedef struct meshfix_report {
     long euler_characteristic;    /* sum over components of V - E + F */
     double area;                  /* 0 without positions */
     double signed_volume;         /* over closed orientable patches; 0 without positions */
+    size_t triangles_sdf_disagree; /* SDF: triangles whose own gradient vote disagrees with their patch's */
+    size_t sdf_evaluations;       /* SDF: calls of sdf and sdf_gradient */
 } meshfix_report;
 
 /* meshfix_check requirements; 0 means MESHFIX_REQUIRE_CONSISTENT. */
@@ -371,6 +400,8 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #define MESHFIX__TRI_FLIP       4u /* final decision */
 #define MESHFIX__TRI_CORNER_SEEN 8u /* << corner: fan walk visited corner 0, 1, 2 */
 #define MESHFIX__TRI_DUPLICATE 64u /* same vertex set as a lower triangle */
+#define MESHFIX__TRI_VOTE_OUT  128u /* SDF: as given, faces along the gradient */
+#define MESHFIX__TRI_VOTE_IN   256u /* SDF: as given, faces against it */
 /* patch bits */
 #define MESHFIX__PATCH_OPEN           1u /* a boundary edge or an odd share of a ring */
 #define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
@@ -412,7 +443,7 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
     half_edges = triangle_count * 3;
     return meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
            meshfix__add_size(&total, half_edges + 16, 4, &plan->work) &&
-           meshfix__add_size(&total, triangle_count, 1, &plan->tri_bits) &&
+           meshfix__add_size(&total, triangle_count, 2, &plan->tri_bits) &&
            meshfix__add_size(&total, vertex_range + 1, 4, &plan->vertex_work) &&
            meshfix__add_size(&total, triangle_count + 1, 4, &plan->patch_start) &&
            meshfix__add_size(&total, triangle_count, 4, &plan->patch_link) &&
@@ -437,7 +468,7 @@ typedef struct meshfix__mesh {
     unsigned int *work;           /* 3 per triangle: edge buckets, duplicate table, flood fill */
     unsigned int *queue;          /* triangles in patch order (inside `work`) */
     unsigned int *tri_patch;      /* (inside `work`) */
-    unsigned char *tri_bits;
+    unsigned short *tri_bits;
     unsigned int *vertex_work;    /* sort counts, then vertex marks */
     unsigned int *patch_start;    /* patch p owns queue[patch_start[p] .. patch_start[p + 1]) */
     unsigned int *patch_link;     /* union-find parent, then component id */
@@ -445,6 +476,8 @@ typedef struct meshfix__mesh {
     unsigned char *component_bits; /* (inside `work`, after tri_patch) */
     size_t patch_count;
     size_t component_count;
+    const meshfix_options *options; /* the SDF callbacks; may be NULL */
+    int policy;                     /* < 0: inspect */
 } meshfix__mesh;
 
 MESHFIX__PRIVATE meshfix_result meshfix__validate(const unsigned int *indices, size_t index_count,
@@ -487,7 +520,7 @@ MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
     for (t = 0; t < m->triangle_count; ++t) {
         const unsigned int *v = m->indices + 3 * t;
         int degenerate = v[0] == v[1] || v[1] == v[2] || v[0] == v[2];
-        m->tri_bits[t] = (unsigned char)(degenerate ? MESHFIX__TRI_DEGENERATE : 0);
+        m->tri_bits[t] = (unsigned short)(degenerate ? MESHFIX__TRI_DEGENERATE : 0);
         count += (size_t)degenerate;
     }
     return count;
@@ -686,7 +719,7 @@ MESHFIX__PRIVATE unsigned int meshfix__apex(const meshfix__mesh *m, unsigned int
 
 MESHFIX__PRIVATE void meshfix__mark_duplicate(meshfix__mesh *m, size_t t)
 {
-    m->tri_bits[t] = (unsigned char)(m->tri_bits[t] | MESHFIX__TRI_DUPLICATE);
+    m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | MESHFIX__TRI_DUPLICATE);
 }
 
 /* Triangles with the same vertex set share all three edges. If one of
@@ -753,7 +786,7 @@ MESHFIX__PRIVATE unsigned int meshfix__corner_of(const meshfix__mesh *m, unsigne
 
 MESHFIX__PRIVATE void meshfix__mark_corner(meshfix__mesh *m, unsigned int t, unsigned int corner)
 {
-    m->tri_bits[t] = (unsigned char)(m->tri_bits[t] | (MESHFIX__TRI_CORNER_SEEN << corner));
+    m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | (MESHFIX__TRI_CORNER_SEEN << corner));
 }
 
 /* Walks from triangle t across half-edge h (which touches v) until the fan
@@ -854,7 +887,7 @@ MESHFIX__PRIVATE void meshfix__flood_patches(meshfix__mesh *m)
                 unsigned int wanted = relative ^ (unsigned int)meshfix__same_direction(m, h, g);
                 if (m->tri_patch[u] == MESHFIX__NONE) {
                     m->tri_patch[u] = patch;
-                    m->tri_bits[u] = (unsigned char)((m->tri_bits[u] & ~MESHFIX__TRI_RELATIVE) | wanted);
+                    m->tri_bits[u] = (unsigned short)((m->tri_bits[u] & ~MESHFIX__TRI_RELATIVE) | wanted);
                     m->queue[tail++] = u;
                 } else if ((m->tri_bits[u] & MESHFIX__TRI_RELATIVE) != wanted) {
                     m->patch_bits[patch] |= MESHFIX__PATCH_NON_ORIENTABLE;
@@ -928,8 +961,6 @@ MESHFIX__PRIVATE void meshfix__join_components(meshfix__mesh *m)
     m->component_count = count;
 }
 
-/* ===== >>orient ===== */
-
 /* What a patch's triangles add up to, in two frames: as given, and as the
    flood fill made them consistent ("relative": each one flipped by its
    relative bit). Volumes are taken about the patch's first vertex. */
@@ -941,6 +972,8 @@ typedef struct meshfix__patch_sums {
     double volume_relative;
     size_t zero_area;
     size_t reversed;        /* triangles with relative bit 1: the patch is not consistent as given */
+    double sdf_vote;        /* SDF: area-weighted vote, relative frame; > 0 keeps the seed side */
+    size_t sdf_evaluations;
 } meshfix__patch_sums;
 
 MESHFIX__PRIVATE void meshfix__load_corner(const meshfix__mesh *m, unsigned int vertex, const double origin[3],
@@ -952,7 +985,77 @@ MESHFIX__PRIVATE void meshfix__load_corner(const meshfix__mesh *m, unsigned int 
     out[2] = (double)v[2] - origin[2];
 }
 
-MESHFIX__PRIVATE void meshfix__sum_patch(const meshfix__mesh *m, unsigned int patch, meshfix__patch_sums *s)
+/* ===== >>sdf ===== */
+
+MESHFIX__PRIVATE double meshfix__max3(double a, double b, double c)
+{
+    return a > b ? (a > c ? a : c) : (b > c ? b : c);
+}
+
+/* The SDF gradient at p: the caller's, or central differences. Returns 0
+   when it is not finite or zero (no vote). */
+MESHFIX__PRIVATE int meshfix__sdf_gradient(const meshfix_options *o, const float p[3], float step, double g[3],
+                                          size_t *evaluations)
+{
+    int axis;
+    if (o->sdf_gradient != NULL) {
+        float out[3];
+        o->sdf_gradient(p, out, o->sdf_user);
+        (*evaluations)++;
+        g[0] = out[0], g[1] = out[1], g[2] = out[2];
+    } else {
+        for (axis = 0; axis < 3; ++axis) {
+            float q[3];
+            double ahead, behind;
+            q[0] = p[0], q[1] = p[1], q[2] = p[2];
+            q[axis] = p[axis] + step;
+            ahead = (double)o->sdf(q, o->sdf_user);
+            q[axis] = p[axis] - step;
+            behind = (double)o->sdf(q, o->sdf_user);
+            g[axis] = ahead - behind;
+        }
+        *evaluations += 6;
+    }
+    return g[0] * 0 + g[1] * 0 + g[2] * 0 == 0 && (g[0] != 0 || g[1] != 0 || g[2] != 0);
+}
+
+/* Marks how triangle t faces, as given, against the SDF gradient at its
+   centroid; returns +1 along, -1 against, 0 no vote. a, b, c are its
+   corners relative to origin, n its (unnormalised) normal. */
+MESHFIX__PRIVATE int meshfix__sdf_vote(meshfix__mesh *m, unsigned int t, const double origin[3], const double a[3],
+                                      const double b[3], const double c[3], const double n[3],
+                                      size_t *evaluations)
+{
+    const meshfix_options *o = m->options;
+    float centroid[3], step = o->sdf_step;
+    double g[3], dot;
+    int k, vote;
+    for (k = 0; k < 3; ++k)
+        centroid[k] = (float)(origin[k] + (a[k] + b[k] + c[k]) / 3.0);
+    if (!(step > 0.0f)) {
+        double ab = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]);
+        double bc = (c[0] - b[0]) * (c[0] - b[0]) + (c[1] - b[1]) * (c[1] - b[1]) + (c[2] - b[2]) * (c[2] - b[2]);
+        double ca = (a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) + (a[2] - c[2]) * (a[2] - c[2]);
+        double magnitude = meshfix__max3(centroid[0] < 0 ? -centroid[0] : centroid[0],
+                                         centroid[1] < 0 ? -centroid[1] : centroid[1],
+                                         centroid[2] < 0 ? -centroid[2] : centroid[2]);
+        double quarter = 0.25 * MESHFIX_SQRT(meshfix__max3(ab, bc, ca));
+        /* a sliver's quarter edge can vanish in float next to its position */
+        double least = 4e-6 * (1.0 + magnitude);
+        step = (float)(quarter > least ? quarter : least);
+    }
+    if (!meshfix__sdf_gradient(o, centroid, step, g, evaluations))
+        return 0;
+    dot = n[0] * g[0] + n[1] * g[1] + n[2] * g[2];
+    vote = dot > 0 ? 1 : dot < 0 ? -1 : 0;
+    m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | (vote > 0 ? MESHFIX__TRI_VOTE_OUT : 0u) |
+                                      (vote < 0 ? MESHFIX__TRI_VOTE_IN : 0u));
+    return vote;
+}
+
+/* ===== >>orient ===== */
+
+MESHFIX__PRIVATE void meshfix__sum_patch(meshfix__mesh *m, unsigned int patch, meshfix__patch_sums *s)
 {
     unsigned int i, end = m->patch_start[patch + 1];
     double origin[3] = {0, 0, 0};
@@ -987,6 +1090,10 @@ MESHFIX__PRIVATE void meshfix__sum_patch(const meshfix__mesh *m, unsigned int pa
                   a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
         s->area += area;
         s->volume_given += volume;
+        if (m->policy == MESHFIX_POLICY_SDF) {
+            int vote = meshfix__sdf_vote(m, t, origin, a, b, c, n, &s->sdf_evaluations);
+            s->sdf_vote += (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ? -vote * area : vote * area;
+        }
         if (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) {
             s->weight_reversed += area;
             s->volume_relative -= volume;
@@ -1016,6 +1123,8 @@ MESHFIX__PRIVATE int meshfix__decide_patch(const meshfix__mesh *m, unsigned int 
 {
     if (policy == MESHFIX_POLICY_SEED)
         return 0;
+    if (policy == MESHFIX_POLICY_SDF && s->sdf_vote != 0.0)
+        return s->sdf_vote < 0.0;
     if (policy == MESHFIX_POLICY_OUTWARD && meshfix__is_closed_orientable(m, patch) &&
         meshfix__volume_is_meaningful(s->volume_relative, s->area))
         return s->volume_relative < 0.0;
@@ -1161,6 +1270,21 @@ MESHFIX__PRIVATE void meshfix__add_patch_to_component(const meshfix__mesh *m, un
         c->orientable = 0;
 }
 
+/* SDF: counts a triangle whose own vote disagrees with the patch's flip;
+   returns the flip the mode asks for: per patch, the patch's; per
+   triangle, its own vote's. */
+MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned int t, unsigned int patch_flip,
+                                               meshfix_report *r)
+{
+    unsigned int bits = m->tri_bits[t];
+    int has_vote = (bits & (MESHFIX__TRI_VOTE_IN | MESHFIX__TRI_VOTE_OUT)) != 0;
+    unsigned int own_flip = (bits & MESHFIX__TRI_VOTE_IN) ? 1u : 0u;
+    if (has_vote && own_flip != patch_flip)
+        r->triangles_sdf_disagree++;
+    /* the plain rule: a triangle with no vote (zero area, no gradient) stays as given */
+    return m->options->sdf_mode == MESHFIX_SDF_PER_TRIANGLE ? own_flip : patch_flip;
+}
+
 /* Turns each patch as the policy decides (policy < 0: inspect, no turns),
    marks the flipped triangles, and sums the report's totals as returned. */
 MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, const meshfix_options *o,
@@ -1174,12 +1298,15 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         double volume;
         meshfix_component *out = meshfix__component_out(o, m->patch_link[p]);
         meshfix__sum_patch(m, p, &s);
+        r->sdf_evaluations += s.sdf_evaluations;
         if (policy >= 0) {
             turn = (unsigned int)meshfix__decide_patch(m, p, (meshfix_policy)policy, &s);
             for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
                 unsigned int t = m->queue[i];
                 unsigned int flip = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ^ turn;
-                m->tri_bits[t] = (unsigned char)(m->tri_bits[t] | (flip ? MESHFIX__TRI_FLIP : 0u));
+                if (policy == MESHFIX_POLICY_SDF)
+                    flip = meshfix__sdf_flip(m, t, flip, r);
+                m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | (flip ? MESHFIX__TRI_FLIP : 0u));
                 r->triangles_flipped += flip;
             }
         }
@@ -1222,9 +1349,11 @@ MESHFIX__PRIVATE void meshfix__debug_check_orientation(const meshfix__mesh *m)
 
 MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, const meshfix__plan *plan,
                                     const unsigned int *indices, size_t index_count, const float *positions,
-                                    size_t stride, size_t vertex_range)
+                                    size_t stride, size_t vertex_range, const meshfix_options *options, int policy)
 {
     MESHFIX_MEMSET(m, 0, sizeof(*m));
+    m->options = options;
+    m->policy = policy;
     m->indices = indices;
     m->triangle_count = index_count / 3;
     m->vertex_range = vertex_range;
@@ -1235,7 +1364,7 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
     m->queue = m->work;
     m->tri_patch = m->queue + m->triangle_count;
     m->component_bits = (unsigned char *)(m->queue + 2 * m->triangle_count);
-    m->tri_bits = block + plan->tri_bits;
+    m->tri_bits = (unsigned short *)(void *)(block + plan->tri_bits);
     m->vertex_work = (unsigned int *)(void *)(block + plan->vertex_work);
     m->patch_start = (unsigned int *)(void *)(block + plan->patch_start);
     m->patch_link = (unsigned int *)(void *)(block + plan->patch_link);
@@ -1275,7 +1404,8 @@ MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshf
         MESHFIX_MEMSET(o->components, 0, n * sizeof(meshfix_component));
     meshfix__orient_patches(m, policy, o, r);
 #ifdef MESHFIX_DEBUG
-    if (policy >= 0)
+    /* the plain per-triangle SDF rule does not promise consistency */
+    if (policy >= 0 && !(policy == MESHFIX_POLICY_SDF && o->sdf_mode == MESHFIX_SDF_PER_TRIANGLE))
         meshfix__debug_check_orientation(m);
 #endif
     if (!full)
@@ -1336,8 +1466,11 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
         return result;
     if (policy == MESHFIX_POLICY_AUTO)
         policy = positions != NULL ? MESHFIX_POLICY_OUTWARD : MESHFIX_POLICY_MAJORITY;
-    if (policy == MESHFIX_POLICY_OUTWARD && positions == NULL)
+    if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_SDF) && positions == NULL)
         return MESHFIX_ERROR_POSITIONS_REQUIRED;
+    if (policy == MESHFIX_POLICY_SDF &&
+        (options->sdf == NULL || (unsigned int)options->sdf_mode > (unsigned int)MESHFIX_SDF_PER_TRIANGLE))
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
     MESHFIX_MEMSET(&r, 0, sizeof(r));
     r.triangles = index_count / 3;
     if (index_count == 0) {
@@ -1366,7 +1499,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
             return MESHFIX_ERROR_OUT_OF_MEMORY;
     }
     block = raw + (16u - (size_t)raw % 16u) % 16u;
-    meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range);
+    meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range, options, policy);
 
     /* 2-5. edges, patches, components, policy */
     meshfix__analyze(&m, policy, options, report != NULL || (options != NULL && options->components != NULL), &r);

@@ -18,7 +18,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const policy_names[MESHFIX_POLICY_COUNT] = {"auto", "seed", "majority", "outward"};
+/* the policies a file can use (SDF needs a function: see sdf_demo.c) */
+#define POLICY_NAMES 4
+static const char *const policy_names[POLICY_NAMES] = {"auto", "seed", "majority", "outward"};
 
 static void print_report(const char *title, const meshfix_report *r)
 {
@@ -83,9 +85,9 @@ int main(int argc, char **argv)
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--policy") == 0 && i + 1 < argc) {
             int p;
-            for (p = 0; p < MESHFIX_POLICY_COUNT && strcmp(argv[i + 1], policy_names[p]) != 0; ++p) {
+            for (p = 0; p < POLICY_NAMES && strcmp(argv[i + 1], policy_names[p]) != 0; ++p) {
             }
-            if (p == MESHFIX_POLICY_COUNT) {
+            if (p == POLICY_NAMES) {
                 fprintf(stderr, "meshfix: unknown policy '%s'\n", argv[i + 1]);
                 return 1;
             }

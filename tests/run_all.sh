@@ -54,11 +54,16 @@ check "C implementation, C++ caller"     sh -c "$CC -std=c99 $STRICT -c tests/co
 
 suite "unit, property and real-model tests" build/test_meshfix
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_meshfix_asan
+suite "SDF policy on the six shapes" build/test_sdf
+suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_sdf_asan
 suite "OpenMesh as oracle" build/test_openmesh
 echo "== command-line tool"
 check "meshfix CLI repairs the demo mesh" sh -c "build/demo_mesh $out/demo.obj >/dev/null && build/meshfix --quiet $out/demo.obj $out/fixed.ply && build/meshfix --inspect $out/fixed.ply | grep -q 'inconsistent 0' && build/meshfix --inspect $out/fixed.ply | grep -q 'inside-out 0'"
 check "meshfix CLI: one-line error, exit 1 on a bad file" sh -c "printf 'OFF\n999999999 1 0\n' > $out/bad.off; build/meshfix $out/bad.off $out/x.obj 2>$out/err.txt; test \$? -eq 1 && test \$(wc -l < $out/err.txt) -eq 1"
+check "meshfix CLI: unknown policy is a one-line error" sh -c "build/meshfix --policy sdf $out/demo.obj $out/x.obj 2>$out/err.txt; test \$? -eq 1 && test \$(wc -l < $out/err.txt) -eq 1"
 check "meshfix CLI: every format round-trips" sh -c "for f in obj off stl ply; do build/meshfix --quiet $out/demo.obj $out/rt.\$f && build/meshfix --inspect $out/rt.\$f | grep -q 'triangles 8064' || exit 1; done"
+
+check "sdf_demo repairs its scene (exit 0: consistent, outward)" sh -c "build/sdf_demo $out/sdf.obj >/dev/null && build/meshfix --inspect $out/sdf.obj | grep -q 'inconsistent 0'"
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
