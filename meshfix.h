@@ -169,7 +169,8 @@ extern "C" {
     X(MESHFIX_ERROR_TOO_LARGE, "too large: index_count above 2^31-1, vertex_count above 2^32 or a size that overflows") \
     X(MESHFIX_ERROR_POSITIONS_REQUIRED, "the chosen policy needs vertex positions") \
     X(MESHFIX_ERROR_SCRATCH_TOO_SMALL, "options.scratch is smaller than meshfix_scratch_size()") \
-    X(MESHFIX_ERROR_OUT_OF_MEMORY, "out of memory")
+    X(MESHFIX_ERROR_OUT_OF_MEMORY, "out of memory") \
+    X(MESHFIX_ERROR_NON_FINITE, "a position is NaN or infinite (meshfix_weld)")
 
 #define MESHFIX__RESULT_ENUM(name, text) name,
 typedef enum meshfix_result {
@@ -180,11 +181,13 @@ typedef enum meshfix_result {
 
 /* Which way each consistently wound patch ends up facing. */
 typedef enum meshfix_policy {
-    MESHFIX_POLICY_AUTO = 0, /* OUTWARD with positions, MAJORITY without */
+    MESHFIX_POLICY_AUTO = 0, /* closed shells OUTWARD, the rest VISIBILITY; MAJORITY without positions */
     MESHFIX_POLICY_SEED,     /* the patch's lowest triangle keeps its winding */
     MESHFIX_POLICY_MAJORITY, /* the side that flips less area (or fewer triangles) */
-    MESHFIX_POLICY_OUTWARD,  /* closed patches by signed volume, open ones by MAJORITY */
+    MESHFIX_POLICY_OUTWARD,  /* closed shells out (cavities in), open patches by MAJORITY */
     MESHFIX_POLICY_SDF,      /* along the gradient of options.sdf (needs positions and sdf) */
+    MESHFIX_POLICY_VISIBILITY, /* Borodin et al.: boundary coherence + ray-sampled visibility */
+    MESHFIX_POLICY_UP,       /* each patch faces the side its normal leans to along options.up */
     MESHFIX_POLICY_COUNT
 } meshfix_policy;
 
@@ -239,7 +242,32 @@ typedef struct meshfix_options {
     void *sdf_user;
     float sdf_step;
     meshfix_sdf_mode sdf_mode;
+    /* MESHFIX_POLICY_VISIBILITY (and AUTO for what is not a closed shell).
+       Rays: per patch proportional to area, at least visibility_min_samples
+       (default 32), visibility_rays in all (default 256 per patch, within
+       65536 .. 4194304); the floor gives way when the patches alone would
+       exceed the budget. Coherence: boundary edges of other patches closer
+       than coherence_distance (a fraction of the longest bounding-box side,
+       default 0.02). Merge thresholds of the paper: C0 (visibility_c0,
+       default 0.5: |c| / l, 1 for coincident opposite edges), eps_v
+       (visibility_eps, 0.02), k_v (visibility_kv, 1.5). */
+    size_t visibility_rays;
+    unsigned int visibility_min_samples;
+    float coherence_distance;
+    float visibility_c0, visibility_eps, visibility_kv;
+    unsigned int visibility_flags;  /* MESHFIX_VISIBILITY_* */
+    unsigned int seed;              /* of the ray directions and points; 0 = a fixed default */
+    /* optional: run task(context, i) for i in [0, count), in any order, on
+       any threads; results are the same as without it, bit for bit */
+    void (*parallel_for)(void (*task)(void *context, size_t index), void *context, size_t count, void *user);
+    void *parallel_user;
+    float up[3];                    /* MESHFIX_POLICY_UP axis; 0, 0, 0 = +z */
+    float *patch_confidence;        /* optional out, by patch id: 0 (a coin flip) .. 1 (clear) */
+    size_t patch_confidence_capacity;
 } meshfix_options;
+
+#define MESHFIX_VISIBILITY_COHERENCE_ONLY 1u /* merge by coherence alone; sides by majority */
+#define MESHFIX_VISIBILITY_ONLY 2u           /* no merging: each patch to its more visible side */
 
 /* What a call found. For meshfix_orient it describes the mesh as returned
    (edges_inconsistent is what is left after repair); for inspect, the input. */
@@ -269,6 +297,11 @@ typedef struct meshfix_report {
     double signed_volume;         /* over closed orientable patches; 0 without positions */
     size_t triangles_sdf_disagree; /* SDF: triangles whose own gradient vote disagrees with their patch's */
     size_t sdf_evaluations;       /* SDF: calls of sdf and sdf_gradient */
+    size_t rays_cast;             /* VISIBILITY: visibility samples */
+    size_t patch_pairs;           /* VISIBILITY: pairs of patches with a coherence */
+    size_t patches_merged;        /* VISIBILITY: merges into super-patches */
+    size_t pairs_conflicting;     /* VISIBILITY: pairs left wound against their coherence */
+    size_t shells_inward;         /* OUTWARD, AUTO: closed shells found to be cavities */
 } meshfix_report;
 
 /* meshfix_check requirements; 0 means MESHFIX_REQUIRE_CONSISTENT. */
@@ -331,6 +364,21 @@ MESHFIX_API int meshfix_check(const unsigned int *indices, size_t index_count,
    MESHFIX_ERROR_TOO_LARGE) or index_count is 0 (no scratch needed). */
 MESHFIX_API size_t meshfix_scratch_size(size_t vertex_count, size_t index_count);
 
+/* Weld vertices closer than `tolerance` (0: equal positions, -0 == +0).
+   remap[v] becomes the lowest-index vertex that v welds to (v itself for
+   the first of each cluster), so a polygon soup with positions per corner
+   becomes indexed as indices[i] = remap[i], and an indexed mesh as
+   indices[i] = remap[indices[i]]. Deterministic; vertices join the
+   earliest representative within the tolerance, so clusters do not chain.
+   Returns MESHFIX_ERROR_NON_FINITE for a NaN or infinite position; on any
+   error remap is not written.
+
+   remap must hold vertex_count elements; unique_count can be NULL;
+   options: only the allocator is used, NULL is fine. */
+MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex_positions, size_t vertex_count,
+                                        size_t vertex_positions_stride, float tolerance,
+                                        const meshfix_options *options, size_t *unique_count);
+
 /* Returns a static, never NULL, English text for a result code. */
 MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 
@@ -372,9 +420,20 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #ifndef MESHFIX_MEMCPY
 #define MESHFIX_MEMCPY(dst, src, size) memcpy((dst), (src), (size))
 #endif
-#ifndef MESHFIX_SQRT
+#if !defined(MESHFIX_SQRT) || !defined(MESHFIX_FLOOR) || !defined(MESHFIX_SIN) || !defined(MESHFIX_COS)
 #include <math.h>
+#endif
+#ifndef MESHFIX_SIN
+#define MESHFIX_SIN(x) sin(x)
+#endif
+#ifndef MESHFIX_COS
+#define MESHFIX_COS(x) cos(x)
+#endif
+#ifndef MESHFIX_SQRT
 #define MESHFIX_SQRT(x) sqrt(x)
+#endif
+#ifndef MESHFIX_FLOOR
+#define MESHFIX_FLOOR(x) floor(x)
 #endif
 #if !defined(MESHFIX_DEBUG) && !defined(NDEBUG)
 #define MESHFIX_DEBUG 1
@@ -407,7 +466,8 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
 #define MESHFIX__PATCH_NON_ORIENTABLE 4u
 #define MESHFIX__PATCH_PARITY         8u /* scratch bit while walking a ring */
-#define MESHFIX__PATCH_FLIP          16u
+#define MESHFIX__PATCH_FLIP          16u /* the turn a geometric policy decided */
+#define MESHFIX__PATCH_DECIDED       32u
 
 typedef char meshfix__unsigned_int_is_32_bits[sizeof(unsigned int) == 4 ? 1 : -1];
 
@@ -478,6 +538,7 @@ typedef struct meshfix__mesh {
     size_t component_count;
     const meshfix_options *options; /* the SDF callbacks; may be NULL */
     int policy;                     /* < 0: inspect */
+    float *confidence;              /* per patch, from the geometric policies; may be NULL */
 } meshfix__mesh;
 
 MESHFIX__PRIVATE meshfix_result meshfix__validate(const unsigned int *indices, size_t index_count,
@@ -524,6 +585,106 @@ MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
         count += (size_t)degenerate;
     }
     return count;
+}
+
+/* ===== >>weld ===== */
+
+/* Welding snaps each vertex to the lowest-index earlier vertex within the
+   tolerance, found in a hash grid of cells as wide as the tolerance (the
+   27 cells around a vertex hold every vertex that close). Only
+   representatives enter the grid, so clusters never chain, and the result
+   depends only on positions and their order. */
+
+typedef struct meshfix__welder {
+    const char *positions;
+    size_t stride;
+    double cell;             /* 0: exact equality */
+    unsigned int *slots;
+    size_t mask;
+} meshfix__welder;
+
+MESHFIX__PRIVATE void meshfix__weld_load(const meshfix__welder *w, size_t v, float p[3])
+{
+    const float *q = (const float *)(const void *)(w->positions + v * w->stride);
+    int k;
+    for (k = 0; k < 3; ++k)
+        p[k] = q[k] == 0.0f ? 0.0f : q[k]; /* -0 welds to +0 */
+}
+
+MESHFIX__PRIVATE void meshfix__weld_cell(const meshfix__welder *w, const float p[3], double cell[3])
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        cell[k] = w->cell > 0 ? MESHFIX_FLOOR((double)p[k] / w->cell) : (double)p[k];
+}
+
+MESHFIX__PRIVATE size_t meshfix__weld_hash(const double cell[3], size_t mask)
+{
+    unsigned int h = 2166136261u, bits[2];
+    int k, j;
+    for (k = 0; k < 3; ++k) {
+        double x = cell[k] == 0.0 ? 0.0 : cell[k];
+        MESHFIX_MEMCPY(bits, &x, sizeof(bits));
+        for (j = 0; j < 2; ++j) {
+            h = (h ^ bits[j]) * 16777619u;
+            h ^= h >> 13;
+        }
+    }
+    return (size_t)h & mask;
+}
+
+/* The lowest representative in cell `c` within the tolerance of p. */
+MESHFIX__PRIVATE unsigned int meshfix__weld_find(const meshfix__welder *w, const double c[3], const float p[3],
+                                                double tolerance_squared, unsigned int best)
+{
+    size_t i;
+    for (i = meshfix__weld_hash(c, w->mask); w->slots[i] != MESHFIX__NONE; i = (i + 1) & w->mask) {
+        unsigned int r = w->slots[i];
+        float q[3];
+        double other[3], d;
+        meshfix__weld_load(w, r, q);
+        meshfix__weld_cell(w, q, other);
+        if (other[0] != c[0] || other[1] != c[1] || other[2] != c[2] || r >= best)
+            continue;
+        d = ((double)p[0] - q[0]) * ((double)p[0] - q[0]) + ((double)p[1] - q[1]) * ((double)p[1] - q[1]) +
+            ((double)p[2] - q[2]) * ((double)p[2] - q[2]);
+        if (w->cell > 0 ? d <= tolerance_squared : (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]))
+            best = r;
+    }
+    return best;
+}
+
+MESHFIX__PRIVATE size_t meshfix__weld_run(meshfix__welder *w, size_t vertex_count, double tolerance,
+                                         unsigned int *remap)
+{
+    size_t v, unique = 0;
+    double tolerance_squared = tolerance * tolerance;
+    int reach = w->cell > 0 ? 1 : 0;
+    for (v = 0; v < vertex_count; ++v) {
+        float p[3];
+        double c[3], n[3];
+        unsigned int best = MESHFIX__NONE;
+        int dx, dy, dz;
+        size_t i;
+        meshfix__weld_load(w, v, p);
+        meshfix__weld_cell(w, p, c);
+        for (dx = -reach; dx <= reach; ++dx)
+            for (dy = -reach; dy <= reach; ++dy)
+                for (dz = -reach; dz <= reach; ++dz) {
+                    n[0] = c[0] + dx, n[1] = c[1] + dy, n[2] = c[2] + dz;
+                    best = meshfix__weld_find(w, n, p, tolerance_squared, best);
+                }
+        if (best != MESHFIX__NONE) {
+            remap[v] = best;
+            continue;
+        }
+        remap[v] = (unsigned int)v;
+        unique++;
+        for (i = meshfix__weld_hash(c, w->mask); w->slots[i] != MESHFIX__NONE; i = (i + 1) & w->mask) {
+        }
+        w->slots[i] = (unsigned int)v;
+    }
+    return unique;
 }
 
 /* ===== >>edges ===== */
@@ -974,6 +1135,7 @@ typedef struct meshfix__patch_sums {
     size_t reversed;        /* triangles with relative bit 1: the patch is not consistent as given */
     double sdf_vote;        /* SDF: area-weighted vote, relative frame; > 0 keeps the seed side */
     size_t sdf_evaluations;
+    double normal[3];       /* area-weighted normal, relative frame */
 } meshfix__patch_sums;
 
 MESHFIX__PRIVATE void meshfix__load_corner(const meshfix__mesh *m, unsigned int vertex, const double origin[3],
@@ -1097,9 +1259,11 @@ MESHFIX__PRIVATE void meshfix__sum_patch(meshfix__mesh *m, unsigned int patch, m
         if (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) {
             s->weight_reversed += area;
             s->volume_relative -= volume;
+            s->normal[0] -= 0.5 * n[0], s->normal[1] -= 0.5 * n[1], s->normal[2] -= 0.5 * n[2];
         } else {
             s->weight_kept += area;
             s->volume_relative += volume;
+            s->normal[0] += 0.5 * n[0], s->normal[1] += 0.5 * n[1], s->normal[2] += 0.5 * n[2];
         }
     }
 }
@@ -1121,11 +1285,13 @@ MESHFIX__PRIVATE int meshfix__is_closed_orientable(const meshfix__mesh *m, unsig
 MESHFIX__PRIVATE int meshfix__decide_patch(const meshfix__mesh *m, unsigned int patch,
                                           meshfix_policy policy, const meshfix__patch_sums *s)
 {
+    if (m->patch_bits[patch] & MESHFIX__PATCH_DECIDED)
+        return (m->patch_bits[patch] & MESHFIX__PATCH_FLIP) != 0;
     if (policy == MESHFIX_POLICY_SEED)
         return 0;
     if (policy == MESHFIX_POLICY_SDF && s->sdf_vote != 0.0)
         return s->sdf_vote < 0.0;
-    if (policy == MESHFIX_POLICY_OUTWARD && meshfix__is_closed_orientable(m, patch) &&
+    if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_AUTO) && meshfix__is_closed_orientable(m, patch) &&
         meshfix__volume_is_meaningful(s->volume_relative, s->area))
         return s->volume_relative < 0.0;
     /* MAJORITY: turning the patch flips the kept triangles instead of the
@@ -1142,6 +1308,1360 @@ MESHFIX__PRIVATE int meshfix__decide_patch(const meshfix__mesh *m, unsigned int 
         }
         return kept < reversed;
     }
+}
+
+/* ===== >>rays ===== */
+
+/* A bounding volume hierarchy over the triangles that have an area, built
+   by binned SAH, and a watertight ray/triangle test (Woop, Benthin, Wald,
+   "Watertight Ray/Triangle Intersection", JCGT 2013): rays neither leak
+   through nor hit twice at shared edges and vertices, so crossing counts
+   of closed surfaces are exact parities. */
+
+typedef struct meshfix__bvh_node {
+    float low[3], high[3];
+    unsigned int first; /* leaf: first slot in `order`; inner: left child (right = left + 1) */
+    unsigned int count; /* leaf: triangles; inner: 0 */
+} meshfix__bvh_node;
+
+typedef struct meshfix__bvh {
+    meshfix__bvh_node *nodes;
+    unsigned int node_count;
+    unsigned int *order;  /* triangle ids, leaf by leaf */
+    float *corners;       /* 9 floats per slot of `order` */
+    unsigned int count;   /* triangles in the tree */
+    float low[3], high[3];
+    double diagonal;
+} meshfix__bvh;
+
+typedef struct meshfix__ray {
+    float origin[3], direction[3], inverse[3];
+    float shear[3];
+    int kx, ky, kz;
+    float t_min, t_max;
+} meshfix__ray;
+
+MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_allocator *a, size_t count, size_t size)
+{
+    if (size != 0 && count > ((size_t)-1) / size)
+        return NULL;
+    return a->alloc_fn != NULL ? a->alloc_fn(count * size + 1, a->user_data) : MESHFIX_MALLOC(count * size + 1, a->user_data);
+}
+
+MESHFIX__PRIVATE void meshfix__release(const meshfix_allocator *a, void *p)
+{
+    if (p == NULL)
+        return;
+    if (a->free_fn != NULL)
+        a->free_fn(p, a->user_data);
+    else
+        MESHFIX_FREE(p, a->user_data);
+}
+
+MESHFIX__PRIVATE void meshfix__grow_box(float low[3], float high[3], const float p[3])
+{
+    int k;
+    for (k = 0; k < 3; ++k) {
+        low[k] = p[k] < low[k] ? p[k] : low[k];
+        high[k] = p[k] > high[k] ? p[k] : high[k];
+    }
+}
+
+MESHFIX__PRIVATE float meshfix__box_area(const float low[3], const float high[3])
+{
+    float x = high[0] - low[0], y = high[1] - low[1], z = high[2] - low[2];
+    return x < 0 ? 0.0f : 2.0f * (x * y + y * z + z * x);
+}
+
+MESHFIX__PRIVATE float meshfix__centroid(const float *corners, int axis)
+{
+    return (corners[axis] + corners[3 + axis] + corners[6 + axis]) * (1.0f / 3.0f);
+}
+
+#define MESHFIX__BINS 12
+#define MESHFIX__LEAF 4
+
+/* Splits slots [first, first + count) at the best of 12 centroid bins
+   along the widest axis; returns the size of the left part, 0 for a leaf. */
+MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first, unsigned int count)
+{
+    float clow[3] = {1e30f, 1e30f, 1e30f}, chigh[3] = {-1e30f, -1e30f, -1e30f}, scale, best_cost;
+    float bin_low[MESHFIX__BINS][3], bin_high[MESHFIX__BINS][3];
+    unsigned int bin_count[MESHFIX__BINS], i, left = 0, best = 0, j;
+    int axis = 0, k;
+    if (count <= MESHFIX__LEAF)
+        return 0;
+    for (i = first; i < first + count; ++i) {
+        float c[3];
+        for (k = 0; k < 3; ++k)
+            c[k] = meshfix__centroid(b->corners + 9 * (size_t)i, k);
+        meshfix__grow_box(clow, chigh, c);
+    }
+    for (k = 1; k < 3; ++k)
+        axis = chigh[k] - clow[k] > chigh[axis] - clow[axis] ? k : axis;
+    if (!(chigh[axis] > clow[axis]))
+        return count / 2; /* all centroids in one point: halve by slot */
+    scale = (float)MESHFIX__BINS / (chigh[axis] - clow[axis]);
+    for (j = 0; j < MESHFIX__BINS; ++j) {
+        bin_count[j] = 0;
+        for (k = 0; k < 3; ++k)
+            bin_low[j][k] = 1e30f, bin_high[j][k] = -1e30f;
+    }
+    for (i = first; i < first + count; ++i) {
+        const float *c = b->corners + 9 * (size_t)i;
+        unsigned int bin = (unsigned int)((meshfix__centroid(c, axis) - clow[axis]) * scale);
+        bin = bin >= MESHFIX__BINS ? MESHFIX__BINS - 1 : bin;
+        bin_count[bin]++;
+        meshfix__grow_box(bin_low[bin], bin_high[bin], c);
+        meshfix__grow_box(bin_low[bin], bin_high[bin], c + 3);
+        meshfix__grow_box(bin_low[bin], bin_high[bin], c + 6);
+    }
+    best_cost = 1e38f;
+    for (j = 1; j < MESHFIX__BINS; ++j) {
+        float l_low[3] = {1e30f, 1e30f, 1e30f}, l_high[3] = {-1e30f, -1e30f, -1e30f};
+        float r_low[3] = {1e30f, 1e30f, 1e30f}, r_high[3] = {-1e30f, -1e30f, -1e30f}, cost;
+        unsigned int nl = 0, nr = 0, q;
+        for (q = 0; q < MESHFIX__BINS; ++q) {
+            if (bin_count[q] == 0)
+                continue;
+            if (q < j) {
+                nl += bin_count[q];
+                meshfix__grow_box(l_low, l_high, bin_low[q]);
+                meshfix__grow_box(l_low, l_high, bin_high[q]);
+            } else {
+                nr += bin_count[q];
+                meshfix__grow_box(r_low, r_high, bin_low[q]);
+                meshfix__grow_box(r_low, r_high, bin_high[q]);
+            }
+        }
+        if (nl == 0 || nr == 0)
+            continue;
+        cost = meshfix__box_area(l_low, l_high) * (float)nl + meshfix__box_area(r_low, r_high) * (float)nr;
+        if (cost < best_cost) {
+            best_cost = cost;
+            best = j;
+        }
+    }
+    if (best == 0)
+        return count / 2;
+    /* partition in place: slots whose bin is below `best` go left */
+    {
+        unsigned int lo = first, hi = first + count;
+        while (lo < hi) {
+            float *c = b->corners + 9 * (size_t)lo;
+            unsigned int bin = (unsigned int)((meshfix__centroid(c, axis) - clow[axis]) * scale);
+            bin = bin >= MESHFIX__BINS ? MESHFIX__BINS - 1 : bin;
+            if (bin < best) {
+                lo++;
+            } else {
+                float tmp[9];
+                unsigned int id = b->order[lo];
+                hi--;
+                MESHFIX_MEMCPY(tmp, c, sizeof(tmp));
+                MESHFIX_MEMCPY(c, b->corners + 9 * (size_t)hi, sizeof(tmp));
+                MESHFIX_MEMCPY(b->corners + 9 * (size_t)hi, tmp, sizeof(tmp));
+                b->order[lo] = b->order[hi];
+                b->order[hi] = id;
+            }
+        }
+        left = lo - first;
+    }
+    return left;
+}
+
+MESHFIX__PRIVATE void meshfix__fit_node(meshfix__bvh *b, meshfix__bvh_node *n, unsigned int first, unsigned int count)
+{
+    unsigned int i;
+    int k;
+    for (k = 0; k < 3; ++k)
+        n->low[k] = 1e30f, n->high[k] = -1e30f;
+    for (i = first; i < first + count; ++i) {
+        const float *c = b->corners + 9 * (size_t)i;
+        meshfix__grow_box(n->low, n->high, c);
+        meshfix__grow_box(n->low, n->high, c + 3);
+        meshfix__grow_box(n->low, n->high, c + 6);
+    }
+}
+
+/* Builds the tree over the triangles with a finite, non-zero area (the
+   `keep` test); the arrays come from the allocator. Returns 0 when out of
+   memory. Deterministic: no randomness, splits depend only on positions
+   and triangle order. */
+MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m, const meshfix_allocator *a,
+                                       int (*keep)(const meshfix__mesh *m, unsigned int t))
+{
+    unsigned int t, n = 0, stack[64], depth = 0;
+    int k;
+    MESHFIX_MEMSET(b, 0, sizeof(*b));
+    /* corners of slot i: corners[9 * i ...] */
+    for (t = 0; t < m->triangle_count; ++t)
+        n += (unsigned int)keep(m, t);
+    b->order = (unsigned int *)meshfix__allocate(a, n, sizeof(unsigned int));
+    b->corners = (float *)meshfix__allocate(a, 9 * (size_t)n, sizeof(float));
+    b->nodes = (meshfix__bvh_node *)meshfix__allocate(a, 2 * (size_t)n + 1, sizeof(meshfix__bvh_node));
+    if (b->order == NULL || b->corners == NULL || b->nodes == NULL)
+        return 0;
+    for (t = 0; t < m->triangle_count; ++t) {
+        unsigned int c, sorted[3];
+        if (!keep(m, t))
+            continue;
+        /* corners by vertex id, not by winding: a hit (and its rounding)
+           must not change when the triangle is flipped */
+        meshfix__sorted_triangle(m, t, sorted);
+        for (c = 0; c < 3; ++c)
+            MESHFIX_MEMCPY(b->corners + 9 * (size_t)b->count + 3 * c, meshfix__position(m, sorted[c]),
+                           3 * sizeof(float));
+        b->order[b->count++] = t;
+    }
+    b->node_count = 1;
+    b->nodes[0].first = 0;
+    b->nodes[0].count = n;
+    meshfix__fit_node(b, &b->nodes[0], 0, n);
+    for (k = 0; k < 3; ++k)
+        b->low[k] = b->nodes[0].low[k], b->high[k] = b->nodes[0].high[k];
+    b->diagonal = n == 0 ? 0.0 : MESHFIX_SQRT((double)(b->high[0] - b->low[0]) * (b->high[0] - b->low[0]) +
+                                               (double)(b->high[1] - b->low[1]) * (b->high[1] - b->low[1]) +
+                                               (double)(b->high[2] - b->low[2]) * (b->high[2] - b->low[2]));
+    stack[depth++] = 0;
+    while (depth > 0) {
+        meshfix__bvh_node *node = &b->nodes[stack[--depth]];
+        unsigned int first = node->first, count = node->count, left;
+        left = depth + 2 < 64 ? meshfix__split(b, first, count) : 0;
+        if (left == 0 || left == count)
+            continue;
+        node->first = b->node_count;
+        node->count = 0;
+        b->nodes[b->node_count].first = first;
+        b->nodes[b->node_count].count = left;
+        b->nodes[b->node_count + 1].first = first + left;
+        b->nodes[b->node_count + 1].count = count - left;
+        meshfix__fit_node(b, &b->nodes[b->node_count], first, left);
+        meshfix__fit_node(b, &b->nodes[b->node_count + 1], first + left, count - left);
+        stack[depth++] = b->node_count;
+        stack[depth++] = b->node_count + 1;
+        b->node_count += 2;
+    }
+    return 1;
+}
+
+MESHFIX__PRIVATE void meshfix__free_bvh(meshfix__bvh *b, const meshfix_allocator *a)
+{
+    meshfix__release(a, b->order);
+    meshfix__release(a, b->corners);
+    meshfix__release(a, b->nodes);
+    MESHFIX_MEMSET(b, 0, sizeof(*b));
+}
+
+MESHFIX__PRIVATE void meshfix__setup_ray(meshfix__ray *r, const float origin[3], const float direction[3],
+                                        float t_min, float t_max)
+{
+    float ax = direction[0] < 0 ? -direction[0] : direction[0];
+    float ay = direction[1] < 0 ? -direction[1] : direction[1];
+    float az = direction[2] < 0 ? -direction[2] : direction[2];
+    int k;
+    for (k = 0; k < 3; ++k) {
+        r->origin[k] = origin[k];
+        r->direction[k] = direction[k];
+        r->inverse[k] = 1.0f / direction[k];
+    }
+    r->kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    r->kx = (r->kz + 1) % 3;
+    r->ky = (r->kx + 1) % 3;
+    if (direction[r->kz] < 0) {
+        int x = r->kx;
+        r->kx = r->ky;
+        r->ky = x;
+    }
+    r->shear[0] = direction[r->kx] / direction[r->kz];
+    r->shear[1] = direction[r->ky] / direction[r->kz];
+    r->shear[2] = 1.0f / direction[r->kz];
+    r->t_min = t_min;
+    r->t_max = t_max;
+}
+
+/* Watertight ray/triangle test; both sides hit. Returns 1 and the
+   distance in *t when the ray meets the triangle within (t_min, t_max). */
+MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c, float *t)
+{
+    float a[3], b[3], d[3], ax, ay, bx, by, cx, cy, u, v, w, det, az, bz, cz, dist;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        a[k] = c[k] - r->origin[k];
+        b[k] = c[3 + k] - r->origin[k];
+        d[k] = c[6 + k] - r->origin[k];
+    }
+    ax = a[r->kx] - r->shear[0] * a[r->kz];
+    ay = a[r->ky] - r->shear[1] * a[r->kz];
+    bx = b[r->kx] - r->shear[0] * b[r->kz];
+    by = b[r->ky] - r->shear[1] * b[r->kz];
+    cx = d[r->kx] - r->shear[0] * d[r->kz];
+    cy = d[r->ky] - r->shear[1] * d[r->kz];
+    u = cx * by - cy * bx;
+    v = ax * cy - ay * cx;
+    w = bx * ay - by * ax;
+    if (u == 0.0f || v == 0.0f || w == 0.0f) {
+        /* on an edge in float: decide in double, as the paper does */
+        u = (float)((double)cx * by - (double)cy * bx);
+        v = (float)((double)ax * cy - (double)ay * cx);
+        w = (float)((double)bx * ay - (double)by * ax);
+    }
+    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0))
+        return 0;
+    det = u + v + w;
+    if (det == 0.0f)
+        return 0;
+    az = r->shear[2] * a[r->kz];
+    bz = r->shear[2] * b[r->kz];
+    cz = r->shear[2] * d[r->kz];
+    dist = (u * az + v * bz + w * cz) / det;
+    if (!(dist > r->t_min && dist < r->t_max))
+        return 0;
+    *t = dist;
+    return 1;
+}
+
+MESHFIX__PRIVATE int meshfix__hit_box(const meshfix__ray *r, const meshfix__bvh_node *n, float t_max)
+{
+    float t0 = r->t_min, t1 = t_max;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        float near_t = (n->low[k] - r->origin[k]) * r->inverse[k];
+        float far_t = (n->high[k] - r->origin[k]) * r->inverse[k];
+        if (near_t > far_t) {
+            float x = near_t;
+            near_t = far_t;
+            far_t = x;
+        }
+        /* NaN (0 * inf at a slab face) compares false and keeps the interval */
+        t0 = near_t > t0 ? near_t : t0;
+        t1 = far_t < t1 ? far_t : t1;
+    }
+    return t0 <= t1;
+}
+
+/* What a traversal looks for: the first hit, the closest, or the number of
+   hits on triangles outside one group (a crossing count for parity). */
+#define MESHFIX__ANY_HIT 0
+#define MESHFIX__CLOSEST_HIT 1
+#define MESHFIX__COUNT_HITS 2
+
+typedef struct meshfix__query {
+    int mode;
+    unsigned int skip;           /* a triangle to ignore (the ray's own), or NONE */
+    const unsigned int *group;   /* COUNT_HITS: group of each triangle */
+    unsigned int skip_group;     /* COUNT_HITS: hits on this group do not count */
+    unsigned int hits;
+    unsigned int triangle;       /* ANY / CLOSEST: the triangle hit */
+    float t;
+} meshfix__query;
+
+MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r, meshfix__query *q)
+{
+    unsigned int stack[64], depth = 0;
+    float best = r->t_max;
+    q->hits = 0;
+    q->triangle = MESHFIX__NONE;
+    if (b->count == 0)
+        return 0;
+    stack[depth++] = 0;
+    while (depth > 0) {
+        const meshfix__bvh_node *n = &b->nodes[stack[--depth]];
+        unsigned int i;
+        if (!meshfix__hit_box(r, n, best))
+            continue;
+        if (n->count == 0) {
+            stack[depth++] = n->first + 1;
+            stack[depth++] = n->first;
+            continue;
+        }
+        for (i = n->first; i < n->first + n->count; ++i) {
+            unsigned int id = b->order[i];
+            float t;
+            if (id == q->skip || !meshfix__hit_triangle(r, b->corners + 9 * (size_t)i, &t) || t >= best)
+                continue;
+            if (q->mode == MESHFIX__COUNT_HITS) {
+                q->hits += q->group[id] != q->skip_group;
+                continue;
+            }
+            q->triangle = id;
+            q->t = t;
+            q->hits = 1;
+            if (q->mode == MESHFIX__ANY_HIT)
+                return 1;
+            best = t;
+        }
+    }
+    return q->hits != 0;
+}
+
+/* ===== >>visibility ===== */
+
+/* Borodin, Zachmann, Klein: each patch side gets the share of random rays,
+   shot from random points of the patch, that escape the model. Every
+   sample has its own random stream (seed, patch, sample), and results are
+   summed in sample order, so the numbers are bit-identical run to run and
+   with or without the caller's parallel_for. */
+
+MESHFIX__PRIVATE unsigned int meshfix__mix(unsigned int h)
+{
+    h ^= h >> 16;
+    h *= 0x7FEB352Du;
+    h ^= h >> 15;
+    h *= 0x846CA68Bu;
+    h ^= h >> 16;
+    return h;
+}
+
+MESHFIX__PRIVATE float meshfix__random(unsigned int *state)
+{
+    *state = meshfix__mix(*state + 0x9E3779B9u);
+    return (float)(*state >> 8) * (1.0f / 16777216.0f);
+}
+
+typedef struct meshfix__geometry {
+    meshfix__mesh *m;
+    const meshfix_options *o;
+    meshfix_allocator allocator;
+    meshfix__bvh bvh;
+    double *patch_area;       /* per patch */
+    double *cumulative_area;  /* per queue slot: area of the patch's triangles up to it */
+    unsigned int *sample_start; /* per patch + 1: its first sample */
+    unsigned char *sample_result; /* per sample: 1 front escaped, 2 back escaped */
+    unsigned int sample_count;
+    unsigned int seed;
+    float t_min;
+} meshfix__geometry;
+
+MESHFIX__PRIVATE int meshfix__has_area(const meshfix__mesh *m, unsigned int t)
+{
+    double a[3], b[3], c[3], n[3], origin[3] = {0, 0, 0}, area;
+    if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
+        return 0;
+    meshfix__load_corner(m, m->indices[3 * t], origin, a);
+    meshfix__load_corner(m, m->indices[3 * t + 1], origin, b);
+    meshfix__load_corner(m, m->indices[3 * t + 2], origin, c);
+    n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+    n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+    n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    area = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    return area > 0.0 && area - area == 0.0;
+}
+
+/* Normal of t in its patch's consistent frame (its relative bit applied). */
+MESHFIX__PRIVATE void meshfix__relative_normal(const meshfix__mesh *m, unsigned int t, double n[3], double *area)
+{
+    double a[3], b[3], c[3], origin[3] = {0, 0, 0}, s;
+    meshfix__load_corner(m, m->indices[3 * t], origin, a);
+    meshfix__load_corner(m, m->indices[3 * t + 1], origin, b);
+    meshfix__load_corner(m, m->indices[3 * t + 2], origin, c);
+    n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+    n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+    n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    *area = 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(*area - *area == 0.0))
+        *area = 0.0;
+    s = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ? -1.0 : 1.0;
+    n[0] *= s, n[1] *= s, n[2] *= s;
+}
+
+/* A random point of patch p, drawn by area, and the triangle it lies on. */
+MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, unsigned int p, unsigned int *state,
+                                                   float point[3])
+{
+    const meshfix__mesh *m = g->m;
+    unsigned int lo = m->patch_start[p], hi = m->patch_start[p + 1] - 1, t;
+    double target = (double)meshfix__random(state) * g->patch_area[p];
+    float u = meshfix__random(state), v = meshfix__random(state), su;
+    const float *a, *b, *c;
+    int k;
+    while (lo < hi) {
+        unsigned int mid = lo + (hi - lo) / 2;
+        if (g->cumulative_area[mid] <= target)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    t = m->queue[lo];
+    {
+        /* corners by vertex id: the point must not move when t is flipped */
+        unsigned int sorted[3];
+        meshfix__sorted_triangle(m, t, sorted);
+        a = meshfix__position(m, sorted[0]);
+        b = meshfix__position(m, sorted[1]);
+        c = meshfix__position(m, sorted[2]);
+    }
+    su = (float)MESHFIX_SQRT((double)u);
+    for (k = 0; k < 3; ++k)
+        point[k] = (1.0f - su) * a[k] + su * (1.0f - v) * b[k] + su * v * c[k];
+    return t;
+}
+
+MESHFIX__PRIVATE void meshfix__random_direction(unsigned int *state, float d[3])
+{
+    float z = 1.0f - 2.0f * meshfix__random(state), phi = 6.2831853f * meshfix__random(state);
+    float r = (float)MESHFIX_SQRT((double)(1.0f - z * z > 0 ? 1.0f - z * z : 0.0f));
+    d[0] = r * (float)MESHFIX_COS((double)phi);
+    d[1] = r * (float)MESHFIX_SIN((double)phi);
+    d[2] = z;
+}
+
+/* One visibility sample: 1 when it escapes from the front side, 2 from
+   the back, 0 when the model blocks it. */
+MESHFIX__PRIVATE unsigned char meshfix__visibility_sample(const meshfix__geometry *g, unsigned int p, unsigned int i)
+{
+    unsigned int state = meshfix__mix(g->seed ^ meshfix__mix(p * 0x9E3779B1u ^ meshfix__mix(i + 0x632BE5ABu)));
+    float point[3], d[3];
+    double n[3], area;
+    meshfix__ray ray;
+    meshfix__query q;
+    unsigned int t = meshfix__sample_point(g, p, &state, point);
+    meshfix__random_direction(&state, d);
+    meshfix__relative_normal(g->m, t, n, &area);
+    meshfix__setup_ray(&ray, point, d, g->t_min, 1e30f);
+    q.mode = MESHFIX__ANY_HIT;
+    q.skip = t;
+    if (meshfix__trace(&g->bvh, &ray, &q))
+        return 0;
+    return n[0] * d[0] + n[1] * d[1] + n[2] * d[2] >= 0 ? 1 : 2;
+}
+
+#define MESHFIX__CHUNK 256
+MESHFIX__PRIVATE void meshfix__visibility_chunk(void *context, size_t chunk)
+{
+    const meshfix__geometry *g = (const meshfix__geometry *)context;
+    unsigned int first = (unsigned int)(chunk * MESHFIX__CHUNK), end = first + MESHFIX__CHUNK, p = 0, lo, hi, s;
+    end = end > g->sample_count ? g->sample_count : end;
+    /* the patch of the first sample: binary search in sample_start */
+    lo = 0, hi = (unsigned int)g->m->patch_count;
+    while (lo + 1 < hi) {
+        unsigned int mid = (lo + hi) / 2;
+        if (g->sample_start[mid] <= first)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    p = lo;
+    for (s = first; s < end; ++s) {
+        while (s >= g->sample_start[p + 1])
+            p++;
+        g->sample_result[s] = meshfix__visibility_sample(g, p, s - g->sample_start[p]);
+    }
+}
+
+/* Samples per patch: proportional to area over the budget, at least a
+   floor (lowered when the patches alone would exceed the budget). */
+MESHFIX__PRIVATE void meshfix__plan_samples(meshfix__geometry *g, double total_area)
+{
+    const meshfix_options *o = g->o;
+    size_t patches = g->m->patch_count, budget, floor_count, p, sum = 0;
+    budget = o != NULL && o->visibility_rays != 0 ? o->visibility_rays : patches * 256;
+    budget = o != NULL && o->visibility_rays != 0 ? budget : (budget < 65536 ? 65536 : budget > 4194304 ? 4194304 : budget);
+    floor_count = o != NULL && o->visibility_min_samples != 0 ? o->visibility_min_samples : 32;
+    if (floor_count * patches > budget)
+        floor_count = budget / patches > 0 ? budget / patches : 1;
+    for (p = 0; p < patches; ++p) {
+        double share = total_area > 0 ? g->patch_area[p] / total_area : 0.0;
+        size_t n = floor_count + (size_t)((double)(budget - (budget > floor_count * patches ? floor_count * patches : budget)) * share);
+        g->sample_start[p] = (unsigned int)sum;
+        sum += g->patch_area[p] > 0 ? n : 0;
+    }
+    g->sample_start[patches] = (unsigned int)sum;
+    g->sample_count = (unsigned int)sum;
+}
+
+MESHFIX__PRIVATE int meshfix__measure_visibility(meshfix__geometry *g, double *front, double *back)
+{
+    size_t chunks, c, p;
+    g->sample_result = (unsigned char *)meshfix__allocate(&g->allocator, g->sample_count, 1);
+    if (g->sample_result == NULL)
+        return 0;
+    chunks = ((size_t)g->sample_count + MESHFIX__CHUNK - 1) / MESHFIX__CHUNK;
+    if (g->o != NULL && g->o->parallel_for != NULL)
+        g->o->parallel_for(meshfix__visibility_chunk, g, chunks, g->o->parallel_user);
+    else
+        for (c = 0; c < chunks; ++c)
+            meshfix__visibility_chunk(g, c);
+    for (p = 0; p < g->m->patch_count; ++p) {
+        unsigned int s, n = g->sample_start[p + 1] - g->sample_start[p], f = 0, b = 0;
+        for (s = g->sample_start[p]; s < g->sample_start[p + 1]; ++s) {
+            f += g->sample_result[s] == 1;
+            b += g->sample_result[s] == 2;
+        }
+        front[p] = n ? (double)f / n : 0.0;
+        back[p] = n ? (double)b / n : 0.0;
+    }
+    return 1;
+}
+
+/* ===== >>coherence ===== */
+
+/* Closest boundary edges of different patches within a search distance,
+   found through a hash grid; the local coherence of two edges is
+   -sgn(s) sqrt(|s|) / (1 + d), s the dot product of the edges (each run
+   the way its patch's consistent frame runs it), d their distance, all
+   lengths divided by the longest side of the bounding box. Patches that
+   meet at a non-manifold edge are coherent at distance 0. Local values are
+   summed per pair of patches. */
+
+typedef struct meshfix__pair {
+    unsigned int a, b;     /* patches, a < b */
+    unsigned int low, high; /* the vertices of the edge that gave it: a canonical order for sums */
+    double c, length;      /* coherence and the length of the edges that gave it */
+} meshfix__pair;
+
+typedef struct meshfix__segment {
+    double p[3], q[3];     /* the positions of its lower and higher vertex */
+    double sign;           /* +1 when the patch's frame runs it from p to q */
+    unsigned int patch;
+    unsigned int low, high; /* its vertices: ties break on these, not on winding or order */
+} meshfix__segment;
+
+MESHFIX__PRIVATE void meshfix__edge_segment(const meshfix__mesh *m, unsigned int h, double scale, meshfix__segment *s)
+{
+    unsigned int t = h / 3, next = h % 3 == 2 ? h - 2 : h + 1;
+    int reverse = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) != 0, k;
+    const float *a, *b;
+    /* geometry by vertex id, winding as a sign: distances and their
+       rounding must not depend on which way the input ran the edge */
+    s->low = m->indices[h] < m->indices[next] ? m->indices[h] : m->indices[next];
+    s->high = m->indices[h] < m->indices[next] ? m->indices[next] : m->indices[h];
+    s->sign = ((m->indices[h] < m->indices[next]) != reverse) ? 1.0 : -1.0;
+    a = meshfix__position(m, s->low);
+    b = meshfix__position(m, s->high);
+    for (k = 0; k < 3; ++k) {
+        s->p[k] = a[k] * scale;
+        s->q[k] = b[k] * scale;
+    }
+    s->patch = m->tri_patch[t];
+}
+
+MESHFIX__PRIVATE int meshfix__segment_before(const meshfix__segment *x, const meshfix__segment *y)
+{
+    return x->low < y->low || (x->low == y->low && (x->high < y->high || (x->high == y->high && x->patch < y->patch)));
+}
+
+MESHFIX__PRIVATE double meshfix__dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Distance between two segments (closest points, clamped; Ericson's
+   "Real-Time Collision Detection" 5.1.9). */
+MESHFIX__PRIVATE double meshfix__segment_distance(const meshfix__segment *s1, const meshfix__segment *s2)
+{
+    double d1[3], d2[3], r[3], a, e, f, b, c, denom, s = 0, t = 0, x[3];
+    int k;
+    for (k = 0; k < 3; ++k) {
+        d1[k] = s1->q[k] - s1->p[k];
+        d2[k] = s2->q[k] - s2->p[k];
+        r[k] = s1->p[k] - s2->p[k];
+    }
+    a = meshfix__dot3(d1, d1), e = meshfix__dot3(d2, d2), f = meshfix__dot3(d2, r);
+    if (a <= 1e-30 && e <= 1e-30) {
+        s = t = 0;
+    } else if (a <= 1e-30) {
+        t = f / e;
+        t = t < 0 ? 0 : t > 1 ? 1 : t;
+    } else {
+        c = meshfix__dot3(d1, r);
+        if (e <= 1e-30) {
+            s = -c / a;
+            s = s < 0 ? 0 : s > 1 ? 1 : s;
+        } else {
+            b = meshfix__dot3(d1, d2);
+            denom = a * e - b * b;
+            s = denom > 0 ? (b * f - c * e) / denom : 0;
+            s = s < 0 ? 0 : s > 1 ? 1 : s;
+            t = (b * s + f) / e;
+            if (t < 0) {
+                t = 0;
+                s = -c / a;
+                s = s < 0 ? 0 : s > 1 ? 1 : s;
+            } else if (t > 1) {
+                t = 1;
+                s = (b - c) / a;
+                s = s < 0 ? 0 : s > 1 ? 1 : s;
+            }
+        }
+    }
+    for (k = 0; k < 3; ++k)
+        x[k] = (s1->p[k] + d1[k] * s) - (s2->p[k] + d2[k] * t);
+    return MESHFIX_SQRT(meshfix__dot3(x, x));
+}
+
+MESHFIX__PRIVATE double meshfix__local_coherence(const meshfix__segment *e, const meshfix__segment *f, double d)
+{
+    double u[3], v[3], s;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        u[k] = e->q[k] - e->p[k];
+        v[k] = f->q[k] - f->p[k];
+    }
+    s = meshfix__dot3(u, v) * e->sign * f->sign;
+    return (s > 0 ? -1.0 : s < 0 ? 1.0 : 0.0) * MESHFIX_SQRT(s < 0 ? -s : s) / (1.0 + d);
+}
+
+MESHFIX__PRIVATE void meshfix__add_pair(meshfix__pair *pairs, size_t *count, const meshfix__segment *from,
+                                        unsigned int other_patch, double c, double length)
+{
+    meshfix__pair *p = &pairs[(*count)++];
+    p->a = from->patch < other_patch ? from->patch : other_patch;
+    p->b = from->patch < other_patch ? other_patch : from->patch;
+    p->low = from->low;
+    p->high = from->high;
+    p->c = c;
+    p->length = length;
+}
+
+typedef struct meshfix__grid {
+    double cell;
+    size_t mask;
+    unsigned int *start;   /* per bucket + 1 */
+    unsigned int *items;   /* segment ids, bucket by bucket */
+} meshfix__grid;
+
+MESHFIX__PRIVATE size_t meshfix__grid_bucket(const meshfix__grid *grid, double x, double y, double z)
+{
+    double c[3];
+    c[0] = x, c[1] = y, c[2] = z;
+    return meshfix__weld_hash(c, grid->mask);
+}
+
+MESHFIX__PRIVATE void meshfix__segment_cells(const meshfix__grid *grid, const meshfix__segment *s, double margin,
+                                            double lo[3], double hi[3])
+{
+    int k;
+    for (k = 0; k < 3; ++k) {
+        double a = s->p[k] < s->q[k] ? s->p[k] : s->q[k], b = s->p[k] < s->q[k] ? s->q[k] : s->p[k];
+        lo[k] = MESHFIX_FLOOR((a - margin) / grid->cell);
+        hi[k] = MESHFIX_FLOOR((b + margin) / grid->cell);
+    }
+}
+
+/* Fills the grid: a counting sort of (bucket, segment) for every cell a
+   segment's box touches. Pass 0 counts, pass 1 places. */
+MESHFIX__PRIVATE void meshfix__grid_pass(meshfix__grid *grid, const meshfix__segment *segments, unsigned int count,
+                                        int place)
+{
+    unsigned int i;
+    for (i = 0; i < count; ++i) {
+        double lo[3], hi[3], x, y, z;
+        meshfix__segment_cells(grid, &segments[i], 0.0, lo, hi);
+        for (x = lo[0]; x <= hi[0]; ++x)
+            for (y = lo[1]; y <= hi[1]; ++y)
+                for (z = lo[2]; z <= hi[2]; ++z) {
+                    size_t bucket = meshfix__grid_bucket(grid, x, y, z);
+                    if (place)
+                        grid->items[grid->start[bucket]++] = i;
+                    else
+                        grid->start[bucket + 1]++;
+                }
+    }
+}
+
+/* Stable bottom-up merge sort of pairs (no qsort: the order must not
+   depend on the C library). */
+MESHFIX__PRIVATE void meshfix__sort_pairs(meshfix__pair *pairs, meshfix__pair *tmp, size_t n,
+                                         int (*before)(const meshfix__pair *, const meshfix__pair *))
+{
+    size_t width, i;
+    meshfix__pair *src = pairs, *dst = tmp;
+    for (width = 1; width < n; width *= 2) {
+        for (i = 0; i < n; i += 2 * width) {
+            size_t lo = i, mid = i + width < n ? i + width : n, hi = i + 2 * width < n ? i + 2 * width : n;
+            size_t a = lo, b = mid, k = lo;
+            while (a < mid && b < hi)
+                dst[k++] = before(&src[b], &src[a]) ? src[b++] : src[a++];
+            while (a < mid)
+                dst[k++] = src[a++];
+            while (b < hi)
+                dst[k++] = src[b++];
+        }
+        src = src == pairs ? tmp : pairs;
+        dst = dst == pairs ? tmp : pairs;
+    }
+    if (src != pairs)
+        MESHFIX_MEMCPY(pairs, src, n * sizeof(meshfix__pair));
+}
+
+MESHFIX__PRIVATE int meshfix__pair_key_before(const meshfix__pair *x, const meshfix__pair *y)
+{
+    if (x->a != y->a)
+        return x->a < y->a;
+    if (x->b != y->b)
+        return x->b < y->b;
+    return x->low < y->low || (x->low == y->low && x->high < y->high);
+}
+
+MESHFIX__PRIVATE int meshfix__pair_patches_before(const meshfix__pair *x, const meshfix__pair *y)
+{
+    return x->a < y->a || (x->a == y->a && x->b < y->b);
+}
+
+MESHFIX__PRIVATE int meshfix__pair_strength_before(const meshfix__pair *x, const meshfix__pair *y)
+{
+    double cx = x->c < 0 ? -x->c : x->c, cy = y->c < 0 ? -y->c : y->c;
+    return cx > cy || (cx == cy && meshfix__pair_patches_before(x, y));
+}
+
+/* Coherence of every pair of patches that have close boundaries or share a
+   non-manifold edge; returns the pairs, summed per pair of patches, in
+   *count (0 pairs is fine), or NULL when out of memory. */
+MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g, size_t *count)
+{
+    meshfix__mesh *m = g->m;
+    const meshfix_options *o = g->o;
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count), n = 0, i;
+    double longest = 0, scale, reach, average = 0, longest_edge = 0;
+    meshfix__segment *segments;
+    meshfix__pair *pairs, *tmp;
+    meshfix__grid grid;
+    size_t buckets = 16, pair_count = 0, out = 0, k;
+    int axis;
+    for (axis = 0; axis < 3; ++axis)
+        longest = g->bvh.high[axis] - g->bvh.low[axis] > longest ? g->bvh.high[axis] - g->bvh.low[axis] : longest;
+    scale = longest > 0 ? 1.0 / longest : 1.0;
+    reach = o != NULL && o->coherence_distance > 0 ? o->coherence_distance : 0.02;
+    for (h = 0; h < half_edges; ++h)
+        n += (m->mate[h] == MESHFIX__NONE || meshfix__is_ring(m->mate[h])) && m->tri_patch[h / 3] != MESHFIX__NONE;
+    segments = (meshfix__segment *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__segment));
+    pairs = (meshfix__pair *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__pair));
+    tmp = (meshfix__pair *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__pair));
+    MESHFIX_MEMSET(&grid, 0, sizeof(grid));
+    if (segments == NULL || pairs == NULL || tmp == NULL)
+        goto fail;
+    /* boundary edges first (they search), then ring members */
+    n = 0;
+    for (h = 0; h < half_edges; ++h)
+        if (m->mate[h] == MESHFIX__NONE && m->tri_patch[h / 3] != MESHFIX__NONE) {
+            double len;
+            meshfix__edge_segment(m, h, scale, &segments[n]);
+            len = MESHFIX_SQRT((segments[n].q[0] - segments[n].p[0]) * (segments[n].q[0] - segments[n].p[0]) +
+                               (segments[n].q[1] - segments[n].p[1]) * (segments[n].q[1] - segments[n].p[1]) +
+                               (segments[n].q[2] - segments[n].p[2]) * (segments[n].q[2] - segments[n].p[2]));
+            if (!(len - len == 0.0))
+                continue;
+            average += len;
+            longest_edge = len > longest_edge ? len : longest_edge;
+            n++;
+        }
+    if (n != 0) {
+        average /= n;
+        grid.cell = reach > average ? reach : average;
+        grid.cell = grid.cell > longest_edge / 16 ? grid.cell : longest_edge / 16;
+        while (buckets < 2 * (size_t)n)
+            buckets *= 2;
+        grid.mask = buckets - 1;
+        grid.start = (unsigned int *)meshfix__allocate(&g->allocator, buckets + 1, sizeof(unsigned int));
+        if (grid.start == NULL)
+            goto fail;
+        MESHFIX_MEMSET(grid.start, 0, (buckets + 1) * sizeof(unsigned int));
+        meshfix__grid_pass(&grid, segments, n, 0);
+        for (k = 0; k < buckets; ++k)
+            grid.start[k + 1] += grid.start[k];
+        grid.items = (unsigned int *)meshfix__allocate(&g->allocator, grid.start[buckets], sizeof(unsigned int));
+        if (grid.items == NULL)
+            goto fail;
+        meshfix__grid_pass(&grid, segments, n, 1); /* start[b] now ends bucket b */
+    }
+    for (i = 0; i < n; ++i) {
+        double lo[3], hi[3], x, y, z, best = reach, length;
+        unsigned int best_id = MESHFIX__NONE;
+        meshfix__segment_cells(&grid, &segments[i], reach, lo, hi);
+        for (x = lo[0]; x <= hi[0]; ++x)
+            for (y = lo[1]; y <= hi[1]; ++y)
+                for (z = lo[2]; z <= hi[2]; ++z) {
+                    size_t bucket = meshfix__grid_bucket(&grid, x, y, z), j;
+                    for (j = bucket == 0 ? 0 : grid.start[bucket - 1]; j < grid.start[bucket]; ++j) {
+                        unsigned int f = grid.items[j];
+                        double d;
+                        if (segments[f].patch == segments[i].patch)
+                            continue;
+                        d = meshfix__segment_distance(&segments[i], &segments[f]);
+                        if (d < best || (d == best && (best_id == MESHFIX__NONE ||
+                                                       meshfix__segment_before(&segments[f], &segments[best_id])))) {
+                            best = d;
+                            best_id = f;
+                        }
+                    }
+                }
+        if (best_id == MESHFIX__NONE)
+            continue;
+        length = MESHFIX_SQRT((segments[i].q[0] - segments[i].p[0]) * (segments[i].q[0] - segments[i].p[0]) +
+                              (segments[i].q[1] - segments[i].p[1]) * (segments[i].q[1] - segments[i].p[1]) +
+                              (segments[i].q[2] - segments[i].p[2]) * (segments[i].q[2] - segments[i].p[2]));
+        meshfix__add_pair(pairs, &pair_count, &segments[i], segments[best_id].patch,
+                          meshfix__local_coherence(&segments[i], &segments[best_id], best), length);
+    }
+    /* patches around a non-manifold edge: each ring member with the next
+       member of another patch, at distance 0 */
+    for (h = 0; h < half_edges; ++h) {
+        unsigned int first, cur;
+        if (!meshfix__is_ring_last(m, h))
+            continue;
+        first = m->mate[h] & ~MESHFIX__RING;
+        for (cur = first;; cur = m->mate[cur] & ~MESHFIX__RING) {
+            unsigned int next = m->mate[cur] & ~MESHFIX__RING;
+            meshfix__segment a, b;
+            meshfix__edge_segment(m, cur, scale, &a);
+            meshfix__edge_segment(m, next, scale, &b);
+            if (a.patch != b.patch && pair_count < (size_t)half_edges) {
+                double length = MESHFIX_SQRT((a.q[0] - a.p[0]) * (a.q[0] - a.p[0]) + (a.q[1] - a.p[1]) * (a.q[1] - a.p[1]) +
+                                             (a.q[2] - a.p[2]) * (a.q[2] - a.p[2]));
+                if (length - length == 0.0)
+                    meshfix__add_pair(pairs, &pair_count, &a, b.patch, meshfix__local_coherence(&a, &b, 0.0), length);
+            }
+            if (cur == h)
+                break;
+        }
+    }
+    /* sum per pair of patches */
+    meshfix__sort_pairs(pairs, tmp, pair_count, meshfix__pair_key_before);
+    for (k = 0; k < pair_count; ++k) {
+        if (out > 0 && pairs[out - 1].a == pairs[k].a && pairs[out - 1].b == pairs[k].b) {
+            pairs[out - 1].c += pairs[k].c;
+            pairs[out - 1].length += pairs[k].length;
+        } else {
+            pairs[out++] = pairs[k];
+        }
+    }
+    meshfix__sort_pairs(pairs, tmp, out, meshfix__pair_strength_before);
+    meshfix__release(&g->allocator, segments);
+    meshfix__release(&g->allocator, tmp);
+    meshfix__release(&g->allocator, grid.start);
+    meshfix__release(&g->allocator, grid.items);
+    *count = out;
+    return pairs;
+fail:
+    meshfix__release(&g->allocator, segments);
+    meshfix__release(&g->allocator, pairs);
+    meshfix__release(&g->allocator, tmp);
+    meshfix__release(&g->allocator, grid.start);
+    meshfix__release(&g->allocator, grid.items);
+    return NULL;
+}
+
+/* ===== >>merge ===== */
+
+/* Greedy merge into super-patches (Borodin et al. 3.5). Pairs are taken by
+   |c|, strongest first; a union-find with orientation parity holds the
+   super-patches. Each super-patch keeps its visibility (vf >= vb in its
+   current frame) and area. Conforming pairs merge, each side to its more
+   visible face; conflicting pairs merge along the coherence when it is
+   strong (|c| / l > C0), or when one side's visibility hardly matters
+   (both below eps_v, or their ratio below k_v); otherwise they stay apart.
+   Unlike the paper, a merged super-patch keeps its members' pairs rather
+   than summing them into new ones: the queue is sorted once, O(P log P). */
+
+typedef struct meshfix__merge {
+    unsigned int *parent;
+    unsigned char *parity;  /* frame of a node relative to its parent */
+    unsigned char *turn;    /* roots: frame relative to their own patch's consistent frame */
+    double *front, *back, *area;
+} meshfix__merge;
+
+MESHFIX__PRIVATE unsigned int meshfix__merge_find(meshfix__merge *g, unsigned int p, unsigned int *parity)
+{
+    unsigned int root = p, acc = 0, next;
+    while (g->parent[root] != root) {
+        acc ^= g->parity[root];
+        root = g->parent[root];
+    }
+    /* compress: point every node on the path straight at the root */
+    next = p;
+    while (g->parent[next] != next) {
+        unsigned int up = g->parent[next], own = g->parity[next];
+        g->parent[next] = root;
+        g->parity[next] = (unsigned char)acc;
+        acc ^= own;
+        next = up;
+    }
+    *parity = p != root ? g->parity[p] : 0u;
+    return root;
+}
+
+/* The final turn of patch p relative to its consistent frame. */
+MESHFIX__PRIVATE unsigned int meshfix__merge_turn(meshfix__merge *g, unsigned int p)
+{
+    unsigned int parity, root = meshfix__merge_find(g, p, &parity);
+    return parity ^ g->turn[root];
+}
+
+MESHFIX__PRIVATE double meshfix__maxd(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+MESHFIX__PRIVATE double meshfix__mind(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+MESHFIX__PRIVATE int meshfix__hardly_visible(double vmax, double vmin, double eps, double kv)
+{
+    return (vmin > eps && vmax / vmin < kv) || (vmin < eps && vmax < eps);
+}
+
+/* Joins the super-patches of A and B, turned by flip_a and flip_b, with
+   the visibility front/back of the result. */
+MESHFIX__PRIVATE void meshfix__join(meshfix__merge *g, unsigned int a, unsigned int b, unsigned int flip_a,
+                                   unsigned int flip_b, double front, double back)
+{
+    unsigned int root = a < b ? a : b, child = a < b ? b : a;
+    g->turn[a] ^= (unsigned char)flip_a;
+    g->turn[b] ^= (unsigned char)flip_b;
+    g->parent[child] = root;
+    g->parity[child] = (unsigned char)(g->turn[child] ^ g->turn[root]);
+    g->area[root] = g->area[a] + g->area[b];
+    g->front[root] = front;
+    g->back[root] = back;
+}
+
+typedef struct meshfix__merge_params {
+    double c0, eps, kv;
+    int use_visibility, use_coherence;
+} meshfix__merge_params;
+
+/* Decides one pair; returns 1 when it merged. */
+MESHFIX__PRIVATE int meshfix__merge_pair(meshfix__merge *g, const meshfix__pair *pair, const meshfix__merge_params *k)
+{
+    unsigned int pa, pb, a = meshfix__merge_find(g, pair->a, &pa), b = meshfix__merge_find(g, pair->b, &pb);
+    double c, area, va_max, va_min, vb_max, vb_min, v1, v2;
+    unsigned int fa, fb, flip_to_cohere;
+    if (a == b)
+        return 0;
+    /* the coherence between the two super-patches as they are now turned */
+    c = pair->c * ((pa ^ g->turn[a]) ? -1.0 : 1.0) * ((pb ^ g->turn[b]) ? -1.0 : 1.0);
+    flip_to_cohere = c < 0; /* turn one of them over to make c positive */
+    if (!k->use_visibility) {
+        meshfix__join(g, a, b, 0, flip_to_cohere, 0, 0);
+        return 1;
+    }
+    area = g->area[a] + g->area[b];
+    if (!(area > 0))
+        return 0;
+    fa = g->front[a] < g->back[a]; /* 1: its more visible side is its back */
+    fb = g->front[b] < g->back[b];
+    /* a side with no preference follows the coherence (and a choice that
+       depended on which way the input happened to wind would make the
+       result depend on it too) */
+    if (g->front[a] == g->back[a])
+        fa = g->front[b] == g->back[b] ? 0u : fb ^ flip_to_cohere;
+    if (g->front[b] == g->back[b])
+        fb = fa ^ flip_to_cohere;
+    va_max = meshfix__maxd(g->front[a], g->back[a]), va_min = meshfix__mind(g->front[a], g->back[a]);
+    vb_max = meshfix__maxd(g->front[b], g->back[b]), vb_min = meshfix__mind(g->front[b], g->back[b]);
+    if ((fa ^ fb ^ flip_to_cohere) == 0) {
+        /* conforming: both to their more visible side, and coherent */
+        meshfix__join(g, a, b, fa, fb, (va_max * g->area[a] + vb_max * g->area[b]) / area,
+                      (va_min * g->area[a] + vb_min * g->area[b]) / area);
+        return 1;
+    }
+    v1 = (va_max * g->area[a] + vb_min * g->area[b]) / area; /* A to its best side, B follows */
+    v2 = (va_min * g->area[a] + vb_max * g->area[b]) / area; /* B to its best side, A follows */
+    if ((pair->length > 0 && (c < 0 ? -c : c) / pair->length > k->c0) ||
+        (meshfix__hardly_visible(va_max, va_min, k->eps, k->kv) && v1 < v2) ||
+        (meshfix__hardly_visible(vb_max, vb_min, k->eps, k->kv) && v2 < v1)) {
+        if (v1 >= v2)
+            meshfix__join(g, a, b, fa, fa ^ flip_to_cohere, v1, v2);
+        else
+            meshfix__join(g, a, b, fb ^ flip_to_cohere, fb, v2, v1);
+        return 1;
+    }
+    return 0;
+}
+
+/* ===== >>nesting ===== */
+
+/* A closed shell is a cavity when it lies inside an odd number of other
+   surfaces and crosses none. Inside: rays from many points of the shell
+   cross the rest of the model an odd number of times; a majority (3 of 4)
+   decides, so an outer shell with gaps still encloses. Crossing: an edge
+   of the shell passes through a triangle of another patch. */
+#define MESHFIX__NESTING_SAMPLES 32
+
+MESHFIX__PRIVATE int meshfix__shell_crosses(const meshfix__geometry *g, unsigned int p)
+{
+    const meshfix__mesh *m = g->m;
+    unsigned int i;
+    meshfix__query q;
+    q.mode = MESHFIX__COUNT_HITS;
+    q.skip = MESHFIX__NONE;
+    q.group = m->tri_patch;
+    q.skip_group = p;
+    for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
+        unsigned int t = m->queue[i], k;
+        for (k = 0; k < 3; ++k) {
+            const float *a = meshfix__position(m, m->indices[3 * t + k]);
+            const float *b = meshfix__position(m, m->indices[3 * t + (k + 1) % 3]);
+            float d[3];
+            meshfix__ray ray;
+            d[0] = b[0] - a[0], d[1] = b[1] - a[1], d[2] = b[2] - a[2];
+            meshfix__setup_ray(&ray, a, d, 1e-4f, 1.0f - 1e-4f);
+            if (meshfix__trace(&g->bvh, &ray, &q))
+                return 1;
+        }
+    }
+    return 0;
+}
+
+/* Returns 1 when the shell is a cavity; *confidence in [0, 1]. */
+MESHFIX__PRIVATE int meshfix__shell_is_cavity(const meshfix__geometry *g, unsigned int p, float *confidence)
+{
+    unsigned int i, odd = 0;
+    meshfix__query q;
+    if (meshfix__shell_crosses(g, p)) {
+        *confidence = 1.0f;
+        return 0;
+    }
+    q.mode = MESHFIX__COUNT_HITS;
+    q.skip = MESHFIX__NONE;
+    q.group = g->m->tri_patch;
+    q.skip_group = p;
+    for (i = 0; i < MESHFIX__NESTING_SAMPLES; ++i) {
+        unsigned int state = meshfix__mix(g->seed ^ 0xC0FFEEu ^ meshfix__mix(p * 0x9E3779B1u ^ meshfix__mix(i)));
+        float point[3], d[3];
+        meshfix__ray ray;
+        meshfix__sample_point(g, p, &state, point);
+        meshfix__random_direction(&state, d);
+        meshfix__setup_ray(&ray, point, d, g->t_min, 1e30f);
+        meshfix__trace(&g->bvh, &ray, &q);
+        odd += q.hits & 1u;
+    }
+    *confidence = (float)(odd * 2 > MESHFIX__NESTING_SAMPLES ? 2 * odd - MESHFIX__NESTING_SAMPLES
+                                                              : MESHFIX__NESTING_SAMPLES - 2 * odd) /
+                  (float)MESHFIX__NESTING_SAMPLES;
+    return 4 * odd >= 3 * MESHFIX__NESTING_SAMPLES;
+}
+
+/* ===== >>geometry ===== */
+
+MESHFIX__PRIVATE void meshfix__free_geometry(meshfix__geometry *g)
+{
+    meshfix__free_bvh(&g->bvh, &g->allocator);
+    meshfix__release(&g->allocator, g->patch_area);
+    meshfix__release(&g->allocator, g->cumulative_area);
+    meshfix__release(&g->allocator, g->sample_start);
+    meshfix__release(&g->allocator, g->sample_result);
+}
+
+MESHFIX__PRIVATE void meshfix__decide(meshfix__mesh *m, unsigned int p, unsigned int turn, float confidence)
+{
+    m->patch_bits[p] = (unsigned char)(m->patch_bits[p] | MESHFIX__PATCH_DECIDED | (turn ? MESHFIX__PATCH_FLIP : 0u));
+    if (m->confidence != NULL)
+        m->confidence[p] = confidence;
+}
+
+/* UP: each patch faces the side its area-weighted normal leans to. */
+MESHFIX__PRIVATE void meshfix__decide_up(meshfix__mesh *m, const meshfix_options *o)
+{
+    double up[3] = {0, 0, 1}, length;
+    unsigned int p;
+    if (o->up[0] != 0 || o->up[1] != 0 || o->up[2] != 0)
+        up[0] = o->up[0], up[1] = o->up[1], up[2] = o->up[2];
+    length = MESHFIX_SQRT(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+    for (p = 0; p < m->patch_count; ++p) {
+        meshfix__patch_sums s;
+        double lean;
+        meshfix__sum_patch(m, p, &s);
+        lean = (s.normal[0] * up[0] + s.normal[1] * up[1] + s.normal[2] * up[2]) / length;
+        meshfix__decide(m, p, lean < 0, s.area > 0 ? (float)((lean < 0 ? -lean : lean) / s.area) : 0.0f);
+    }
+}
+
+/* Closed shells: outward, or inward when they are cavities. */
+MESHFIX__PRIVATE void meshfix__decide_shells(meshfix__geometry *g, meshfix_report *r)
+{
+    meshfix__mesh *m = g->m;
+    unsigned int p;
+    for (p = 0; p < m->patch_count; ++p) {
+        meshfix__patch_sums s;
+        float confidence;
+        int cavity;
+        if (!meshfix__is_closed_orientable(m, p))
+            continue;
+        meshfix__sum_patch(m, p, &s);
+        if (!meshfix__volume_is_meaningful(s.volume_relative, s.area))
+            continue;
+        cavity = meshfix__shell_is_cavity(g, p, &confidence);
+        r->shells_inward += (size_t)cavity;
+        meshfix__decide(m, p, (unsigned int)((s.volume_relative < 0) != cavity), confidence);
+    }
+}
+
+MESHFIX__PRIVATE int meshfix__decide_visibility(meshfix__geometry *g, meshfix_report *r)
+{
+    meshfix__mesh *m = g->m;
+    const meshfix_options *o = g->o;
+    size_t pair_count = 0, i, patches = m->patch_count;
+    meshfix__pair *pairs = NULL;
+    meshfix__merge merge;
+    meshfix__merge_params k;
+    double total_area = 0;
+    unsigned int p, *open = NULL;
+    int ok = 0;
+    k.c0 = o->visibility_c0 > 0 ? o->visibility_c0 : 0.5;
+    k.eps = o->visibility_eps > 0 ? o->visibility_eps : 0.02;
+    k.kv = o->visibility_kv > 0 ? o->visibility_kv : 1.5;
+    k.use_visibility = !(o->visibility_flags & MESHFIX_VISIBILITY_COHERENCE_ONLY);
+    k.use_coherence = !(o->visibility_flags & MESHFIX_VISIBILITY_ONLY);
+    MESHFIX_MEMSET(&merge, 0, sizeof(merge));
+    merge.parent = (unsigned int *)meshfix__allocate(&g->allocator, patches, sizeof(unsigned int));
+    merge.parity = (unsigned char *)meshfix__allocate(&g->allocator, patches, 1);
+    merge.turn = (unsigned char *)meshfix__allocate(&g->allocator, patches, 1);
+    merge.front = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
+    merge.back = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
+    merge.area = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
+    open = (unsigned int *)meshfix__allocate(&g->allocator, patches, sizeof(unsigned int));
+    if (!merge.parent || !merge.parity || !merge.turn || !merge.front || !merge.back || !merge.area || !open)
+        goto done;
+    /* the patches still to decide; the decided ones take no samples */
+    for (p = 0; p < patches; ++p) {
+        open[p] = !(m->patch_bits[p] & MESHFIX__PATCH_DECIDED);
+        merge.parent[p] = p;
+        merge.parity[p] = merge.turn[p] = 0;
+        merge.area[p] = g->patch_area[p];
+        total_area += open[p] ? g->patch_area[p] : 0.0;
+    }
+    if (k.use_visibility) {
+        double *saved = g->patch_area, *weights;
+        weights = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
+        if (weights == NULL)
+            goto done;
+        for (p = 0; p < patches; ++p)
+            weights[p] = open[p] ? g->patch_area[p] : 0.0;
+        g->patch_area = weights;
+        meshfix__plan_samples(g, total_area);
+        g->patch_area = saved;
+        meshfix__release(&g->allocator, weights);
+        if (!meshfix__measure_visibility(g, merge.front, merge.back))
+            goto done;
+        r->rays_cast += g->sample_count;
+    } else {
+        for (p = 0; p < patches; ++p)
+            merge.front[p] = merge.back[p] = 0;
+    }
+    if (k.use_coherence) {
+        size_t kept = 0;
+        pairs = meshfix__measure_coherence(g, &pair_count);
+        if (pairs == NULL)
+            goto done;
+        for (i = 0; i < pair_count; ++i)
+            if (open[pairs[i].a] && open[pairs[i].b])
+                pairs[kept++] = pairs[i];
+        pair_count = kept;
+        r->patch_pairs += pair_count;
+        for (i = 0; i < pair_count; ++i)
+            r->patches_merged += (size_t)meshfix__merge_pair(&merge, &pairs[i], &k);
+    }
+    /* every super-patch to its more visible side; without a visibility
+       margin (or without visibility at all), to its majority side */
+    for (p = 0; p < patches; ++p) {
+        unsigned int parity;
+        if (open[p] && meshfix__merge_find(&merge, p, &parity) == p) {
+            if (merge.front[p] < merge.back[p])
+                merge.turn[p] ^= 1;
+            else if (merge.front[p] == merge.back[p])
+                open[p] = 2; /* decided below by the members' majority */
+        }
+    }
+    {
+        /* majority of tied super-patches: area given as is, per root frame */
+        double *kept_area = merge.front, *reversed_area = merge.back;
+        for (p = 0; p < patches; ++p)
+            if (open[p] == 2)
+                kept_area[p] = reversed_area[p] = 0;
+        for (p = 0; p < patches; ++p) {
+            unsigned int parity, root;
+            meshfix__patch_sums s;
+            if (!open[p])
+                continue;
+            root = meshfix__merge_find(&merge, p, &parity);
+            if (open[root] != 2)
+                continue;
+            meshfix__sum_patch(m, p, &s);
+            kept_area[root] += parity ? s.weight_reversed : s.weight_kept;
+            reversed_area[root] += parity ? s.weight_kept : s.weight_reversed;
+        }
+        for (p = 0; p < patches; ++p)
+            if (open[p] == 2 && kept_area[p] < reversed_area[p])
+                merge.turn[p] ^= 1;
+    }
+    for (p = 0; p < patches; ++p) {
+        unsigned int parity, root;
+        double margin;
+        if (!open[p])
+            continue;
+        root = meshfix__merge_find(&merge, p, &parity);
+        margin = open[root] == 2 || !k.use_visibility ? 0.0
+                 : (meshfix__maxd(merge.front[root], merge.back[root]) - meshfix__mind(merge.front[root], merge.back[root])) /
+                       (merge.front[root] + merge.back[root]);
+        meshfix__decide(m, p, parity ^ merge.turn[root], (float)margin);
+    }
+    for (i = 0; i < pair_count; ++i) {
+        unsigned int ta = meshfix__merge_turn(&merge, pairs[i].a), tb = meshfix__merge_turn(&merge, pairs[i].b);
+        r->pairs_conflicting += (size_t)(pairs[i].c * ((ta ^ tb) ? -1.0 : 1.0) < 0);
+    }
+    ok = 1;
+done:
+    meshfix__release(&g->allocator, pairs);
+    meshfix__release(&g->allocator, merge.parent);
+    meshfix__release(&g->allocator, merge.parity);
+    meshfix__release(&g->allocator, merge.turn);
+    meshfix__release(&g->allocator, merge.front);
+    meshfix__release(&g->allocator, merge.back);
+    meshfix__release(&g->allocator, merge.area);
+    meshfix__release(&g->allocator, open);
+    return ok;
+}
+
+/* Decides the patches that need ray queries or an axis: the nesting of
+   closed shells (OUTWARD, AUTO), visibility and coherence (VISIBILITY; AUTO
+   for the rest), the up axis (UP). Returns 0 when out of memory. */
+MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, const meshfix_allocator *allocator,
+                                                meshfix_report *r)
+{
+    meshfix__geometry g;
+    int policy = m->policy, ok = 1;
+    unsigned int p, i;
+    if (policy == MESHFIX_POLICY_UP) {
+        meshfix__decide_up(m, m->options);
+        return 1;
+    }
+    if (policy != MESHFIX_POLICY_OUTWARD && policy != MESHFIX_POLICY_AUTO && policy != MESHFIX_POLICY_VISIBILITY)
+        return 1;
+    /* one closed shell alone: nothing to nest in, its volume decides */
+    if (policy != MESHFIX_POLICY_VISIBILITY && m->patch_count == 1 && meshfix__is_closed_orientable(m, 0))
+        return 1;
+    MESHFIX_MEMSET(&g, 0, sizeof(g));
+    g.m = m;
+    g.o = m->options;
+    g.allocator = *allocator;
+    g.seed = m->options != NULL && m->options->seed != 0 ? m->options->seed : 0x5EEDu;
+    g.patch_area = (double *)meshfix__allocate(allocator, m->patch_count, sizeof(double));
+    g.cumulative_area = (double *)meshfix__allocate(allocator, m->triangle_count, sizeof(double));
+    g.sample_start = (unsigned int *)meshfix__allocate(allocator, m->patch_count + 1, sizeof(unsigned int));
+    if (!g.patch_area || !g.cumulative_area || !g.sample_start || !meshfix__build_bvh(&g.bvh, m, allocator, meshfix__has_area)) {
+        meshfix__free_geometry(&g);
+        return 0;
+    }
+    g.t_min = (float)(1e-5 * g.bvh.diagonal);
+    for (p = 0; p < m->patch_count; ++p) {
+        double sum = 0;
+        for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
+            double n[3], area;
+            meshfix__relative_normal(m, m->queue[i], n, &area);
+            sum += area;
+            g.cumulative_area[i] = sum;
+        }
+        g.patch_area[p] = sum;
+    }
+    if (policy != MESHFIX_POLICY_VISIBILITY)
+        meshfix__decide_shells(&g, r);
+    if (policy != MESHFIX_POLICY_OUTWARD)
+        ok = meshfix__decide_visibility(&g, r);
+    meshfix__free_geometry(&g);
+    return ok;
 }
 
 /* ===== >>report ===== */
@@ -1285,6 +2805,22 @@ MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned
     return m->options->sdf_mode == MESHFIX_SDF_PER_TRIANGLE ? own_flip : patch_flip;
 }
 
+/* How clear a decision made from the patch's own sums was: the margin of
+   the vote that decided it, 0 a coin flip, 1 unanimous. */
+MESHFIX__PRIVATE float meshfix__confidence(const meshfix__mesh *m, unsigned int p, int policy,
+                                          const meshfix__patch_sums *s)
+{
+    double total = s->weight_kept + s->weight_reversed, margin = s->weight_kept - s->weight_reversed;
+    if (policy == MESHFIX_POLICY_SEED)
+        return 1.0f;
+    if (policy == MESHFIX_POLICY_SDF && s->area > 0)
+        return (float)((s->sdf_vote < 0 ? -s->sdf_vote : s->sdf_vote) / s->area);
+    if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_AUTO) && meshfix__is_closed_orientable(m, p) &&
+        meshfix__volume_is_meaningful(s->volume_relative, s->area))
+        return 1.0f;
+    return total > 0 ? (float)((margin < 0 ? -margin : margin) / total) : 0.0f;
+}
+
 /* Turns each patch as the policy decides (policy < 0: inspect, no turns),
    marks the flipped triangles, and sums the report's totals as returned. */
 MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, const meshfix_options *o,
@@ -1323,6 +2859,10 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         if (out != NULL)
             meshfix__add_patch_to_component(m, p, &s, volume, out);
         m->component_bits[m->patch_link[p]] |= (unsigned char)bits;
+        if (o != NULL && o->patch_confidence != NULL && p < o->patch_confidence_capacity && policy >= 0)
+            o->patch_confidence[p] = m->confidence != NULL && (bits & MESHFIX__PATCH_DECIDED)
+                                         ? m->confidence[p]
+                                         : meshfix__confidence(m, p, policy, &s);
     }
     for (c = 0; c < m->component_count; ++c) {
         r->components_closed += (size_t)!(m->component_bits[c] & MESHFIX__PATCH_NOT_MANIFOLD);
@@ -1375,8 +2915,8 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
    counts that only describe the mesh (duplicates, non-manifold vertices,
    inconsistent edges, Euler characteristic) are skipped when `full` is 0:
    the caller asked for neither a report nor components. */
-MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshfix_options *o, int full,
-                                       meshfix_report *r)
+MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, const meshfix_options *o, int full,
+                                                 const meshfix_allocator *allocator, meshfix_report *r)
 {
     meshfix__edge_counts edges;
     size_t c, n;
@@ -1400,16 +2940,30 @@ MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshf
 
     n = o != NULL && o->components != NULL ? o->components_capacity : 0;
     n = m->component_count < n ? m->component_count : n;
+    if (policy >= 0) {
+        /* the only stage that allocates: ray queries for some policies */
+        if (o != NULL && o->patch_confidence != NULL && m->patch_count != 0) {
+            m->confidence = (float *)meshfix__allocate(allocator, m->patch_count, sizeof(float));
+            if (m->confidence == NULL)
+                return MESHFIX_ERROR_OUT_OF_MEMORY;
+        }
+        if (!meshfix__decide_by_geometry(m, allocator, r)) {
+            meshfix__release(allocator, m->confidence);
+            return MESHFIX_ERROR_OUT_OF_MEMORY;
+        }
+    }
     if (n != 0)
         MESHFIX_MEMSET(o->components, 0, n * sizeof(meshfix_component));
     meshfix__orient_patches(m, policy, o, r);
+    meshfix__release(allocator, m->confidence);
+    m->confidence = NULL;
 #ifdef MESHFIX_DEBUG
     /* the plain per-triangle SDF rule does not promise consistency */
     if (policy >= 0 && !(policy == MESHFIX_POLICY_SDF && o->sdf_mode == MESHFIX_SDF_PER_TRIANGLE))
         meshfix__debug_check_orientation(m);
 #endif
     if (!full)
-        return;
+        return MESHFIX_OK;
     r->edges_inconsistent = policy >= 0 ? meshfix__count_inconsistent(m, 1) : r->edges_inconsistent_input;
     meshfix__count_component_edges(m, o);
     r->euler_characteristic = (long)meshfix__count_component_vertices(m, o, r) - (long)r->edges +
@@ -1417,6 +2971,7 @@ MESHFIX__PRIVATE void meshfix__analyze(meshfix__mesh *m, int policy, const meshf
     for (c = 0; c < n; ++c)
         o->components[c].euler_characteristic = (long)o->components[c].vertices - (long)o->components[c].edges +
                                                 (long)o->components[c].triangles;
+    return MESHFIX_OK;
 }
 
 MESHFIX__PRIVATE void meshfix__write_indices(const meshfix__mesh *m, unsigned int *destination)
@@ -1456,17 +3011,23 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
     meshfix__plan plan;
     meshfix__mesh m;
     meshfix_report r;
+    meshfix_options defaults;
     unsigned char *raw, *block;
     size_t vertex_range = 0;
     meshfix_result result;
+
+    /* every stage may read options: NULL means all zero */
+    MESHFIX_MEMSET(&defaults, 0, sizeof(defaults));
+    options = options != NULL ? options : &defaults;
 
     /* 1. validate, before touching anything */
     result = meshfix__validate(indices, index_count, positions, vertex_count, stride, &vertex_range);
     if (result != MESHFIX_OK)
         return result;
-    if (policy == MESHFIX_POLICY_AUTO)
-        policy = positions != NULL ? MESHFIX_POLICY_OUTWARD : MESHFIX_POLICY_MAJORITY;
-    if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_SDF) && positions == NULL)
+    if (policy == MESHFIX_POLICY_AUTO && positions == NULL)
+        policy = MESHFIX_POLICY_MAJORITY;
+    if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_SDF || policy == MESHFIX_POLICY_VISIBILITY ||
+         policy == MESHFIX_POLICY_UP) && positions == NULL)
         return MESHFIX_ERROR_POSITIONS_REQUIRED;
     if (policy == MESHFIX_POLICY_SDF &&
         (options->sdf == NULL || (unsigned int)options->sdf_mode > (unsigned int)MESHFIX_SDF_PER_TRIANGLE))
@@ -1502,7 +3063,13 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
     meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range, options, policy);
 
     /* 2-5. edges, patches, components, policy */
-    meshfix__analyze(&m, policy, options, report != NULL || (options != NULL && options->components != NULL), &r);
+    result = meshfix__analyze(&m, policy, options, report != NULL || (options != NULL && options->components != NULL),
+                              &allocator, &r);
+    if (result != MESHFIX_OK) {
+        if (raw != (unsigned char *)(options != NULL ? options->scratch : NULL))
+            meshfix__release(&allocator, raw);
+        return result;
+    }
 
     /* 6. write: nothing can fail from here on */
     if (destination != NULL && policy >= 0)
@@ -1510,12 +3077,8 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
     meshfix__write_triangle_outputs(&m, options, policy);
     if (report != NULL)
         *report = r;
-    if (raw != (unsigned char *)(options != NULL ? options->scratch : NULL)) {
-        if (allocator.free_fn != NULL)
-            allocator.free_fn(raw, allocator.user_data);
-        else
-            MESHFIX_FREE(raw, allocator.user_data);
-    }
+    if (raw != (unsigned char *)(options != NULL ? options->scratch : NULL))
+        meshfix__release(&allocator, raw);
     return MESHFIX_OK;
 }
 
@@ -1585,6 +3148,59 @@ MESHFIX_API size_t meshfix_scratch_size(size_t vertex_count, size_t index_count)
         !meshfix__make_plan(&plan, vertex_count, (index_count + 2) / 3))
         return 0;
     return plan.total;
+}
+
+MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex_positions, size_t vertex_count,
+                                        size_t vertex_positions_stride, float tolerance,
+                                        const meshfix_options *options, size_t *unique_count)
+{
+    meshfix_allocator allocator;
+    meshfix__welder w;
+    unsigned int *result;
+    size_t v, size = 16, unique;
+    if (vertex_count == 0) {
+        if (unique_count != NULL)
+            *unique_count = 0;
+        return MESHFIX_OK;
+    }
+    if (remap == NULL || vertex_positions == NULL || vertex_positions_stride < 3 * sizeof(float) ||
+        vertex_positions_stride % sizeof(float) != 0 || !(tolerance >= 0.0f) || !(tolerance - tolerance == 0.0f))
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
+    if (vertex_count > MESHFIX__MAX_VERTEX_COUNT - 1 || (vertex_count - 1) > ((size_t)-1) / vertex_positions_stride)
+        return MESHFIX_ERROR_TOO_LARGE;
+    for (v = 0; v < vertex_count; ++v) {
+        const float *p = (const float *)(const void *)((const char *)vertex_positions + v * vertex_positions_stride);
+        if (!(meshfix__is_finite(p[0]) && meshfix__is_finite(p[1]) && meshfix__is_finite(p[2])))
+            return MESHFIX_ERROR_NON_FINITE;
+    }
+    MESHFIX_MEMSET(&allocator, 0, sizeof(allocator));
+    if (options != NULL && options->allocator.alloc_fn != NULL) {
+        if (options->allocator.free_fn == NULL)
+            return MESHFIX_ERROR_INVALID_ARGUMENT;
+        allocator = options->allocator;
+    }
+    while (size < 2 * vertex_count)
+        size *= 2;
+    MESHFIX_MEMSET(&w, 0, sizeof(w));
+    w.positions = (const char *)vertex_positions;
+    w.stride = vertex_positions_stride;
+    w.cell = (double)tolerance;
+    w.mask = size - 1;
+    w.slots = (unsigned int *)meshfix__allocate(&allocator, size, sizeof(unsigned int));
+    result = (unsigned int *)meshfix__allocate(&allocator, vertex_count, sizeof(unsigned int));
+    if (w.slots == NULL || result == NULL) {
+        meshfix__release(&allocator, w.slots);
+        meshfix__release(&allocator, result);
+        return MESHFIX_ERROR_OUT_OF_MEMORY;
+    }
+    MESHFIX_MEMSET(w.slots, 0xFF, size * sizeof(unsigned int));
+    unique = meshfix__weld_run(&w, vertex_count, (double)tolerance, result);
+    MESHFIX_MEMCPY(remap, result, vertex_count * sizeof(unsigned int));
+    if (unique_count != NULL)
+        *unique_count = unique;
+    meshfix__release(&allocator, w.slots);
+    meshfix__release(&allocator, result);
+    return MESHFIX_OK;
 }
 
 MESHFIX_API const char *meshfix_result_string(meshfix_result result)
