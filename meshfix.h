@@ -1945,48 +1945,34 @@ MESHFIX__PRIVATE double meshfix__dot3(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* Distance between two segments (closest points, clamped; Ericson's
-   "Real-Time Collision Detection" 5.1.9). */
-MESHFIX__PRIVATE double meshfix__segment_distance(const meshfix__segment *s1, const meshfix__segment *s2)
+MESHFIX__PRIVATE double meshfix__point_segment_distance(const double x[3], const meshfix__segment *f)
 {
-    double d1[3], d2[3], r[3], a, e, f, b, c, denom, s = 0, t = 0, x[3];
+    double d[3], r[3], len, t, y[3];
     int k;
     for (k = 0; k < 3; ++k) {
-        d1[k] = s1->q[k] - s1->p[k];
-        d2[k] = s2->q[k] - s2->p[k];
-        r[k] = s1->p[k] - s2->p[k];
+        d[k] = f->q[k] - f->p[k];
+        r[k] = x[k] - f->p[k];
     }
-    a = meshfix__dot3(d1, d1), e = meshfix__dot3(d2, d2), f = meshfix__dot3(d2, r);
-    if (a <= 1e-30 && e <= 1e-30) {
-        s = t = 0;
-    } else if (a <= 1e-30) {
-        t = f / e;
-        t = t < 0 ? 0 : t > 1 ? 1 : t;
-    } else {
-        c = meshfix__dot3(d1, r);
-        if (e <= 1e-30) {
-            s = -c / a;
-            s = s < 0 ? 0 : s > 1 ? 1 : s;
-        } else {
-            b = meshfix__dot3(d1, d2);
-            denom = a * e - b * b;
-            s = denom > 0 ? (b * f - c * e) / denom : 0;
-            s = s < 0 ? 0 : s > 1 ? 1 : s;
-            t = (b * s + f) / e;
-            if (t < 0) {
-                t = 0;
-                s = -c / a;
-                s = s < 0 ? 0 : s > 1 ? 1 : s;
-            } else if (t > 1) {
-                t = 1;
-                s = (b - c) / a;
-                s = s < 0 ? 0 : s > 1 ? 1 : s;
-            }
-        }
-    }
+    len = meshfix__dot3(d, d);
+    t = len > 0 ? meshfix__dot3(r, d) / len : 0.0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
     for (k = 0; k < 3; ++k)
-        x[k] = (s1->p[k] + d1[k] * s) - (s2->p[k] + d2[k] * t);
-    return MESHFIX_SQRT(meshfix__dot3(x, x));
+        y[k] = r[k] - t * d[k];
+    return MESHFIX_SQRT(meshfix__dot3(y, y));
+}
+
+/* How far edge f is from running along edge e: the mean distance of e's
+   two ends and middle from f. The paper takes the shortest distance, but
+   across a gap the neighbours of an edge's true counterpart touch its ends
+   just as closely; this measure picks the edge that runs alongside. */
+MESHFIX__PRIVATE double meshfix__segment_distance(const meshfix__segment *e, const meshfix__segment *f)
+{
+    double mid[3];
+    int k;
+    for (k = 0; k < 3; ++k)
+        mid[k] = 0.5 * (e->p[k] + e->q[k]);
+    return (meshfix__point_segment_distance(e->p, f) + meshfix__point_segment_distance(e->q, f) +
+            meshfix__point_segment_distance(mid, f)) / 3.0;
 }
 
 MESHFIX__PRIVATE double meshfix__local_coherence(const meshfix__segment *e, const meshfix__segment *f, double d)
@@ -2328,8 +2314,8 @@ MESHFIX__PRIVATE int meshfix__merge_pair(meshfix__merge *g, const meshfix__pair 
     unsigned int pa, pb, a = meshfix__merge_find(g, pair->a, &pa), b = meshfix__merge_find(g, pair->b, &pb);
     double c, area, va_max, va_min, vb_max, vb_min, v1, v2;
     unsigned int fa, fb, flip_to_cohere;
-    if (a == b)
-        return 0;
+    if (a == b || pair->c == 0.0)
+        return 0; /* already one; or edges at right angles, which say nothing */
     /* the coherence between the two super-patches as they are now turned */
     c = pair->c * ((pa ^ g->turn[a]) ? -1.0 : 1.0) * ((pb ^ g->turn[b]) ? -1.0 : 1.0);
     flip_to_cohere = c < 0; /* turn one of them over to make c positive */
@@ -2580,6 +2566,8 @@ MESHFIX__PRIVATE int meshfix__decide_visibility(meshfix__geometry *g, meshfix_re
             if (open[root] != 2)
                 continue;
             meshfix__sum_patch(m, p, &s);
+            /* as the super-patch is turned now, what would keep its winding */
+            parity ^= merge.turn[root];
             kept_area[root] += parity ? s.weight_reversed : s.weight_kept;
             reversed_area[root] += parity ? s.weight_kept : s.weight_reversed;
         }
