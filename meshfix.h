@@ -1580,8 +1580,10 @@ MESHFIX__PRIVATE void meshfix__setup_ray(meshfix__ray *r, const float origin[3],
 }
 
 /* Watertight ray/triangle test; both sides hit. Returns 1 and the
-   distance in *t when the ray meets the triangle within (t_min, t_max). */
-MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c, float *t)
+   distance in *t when the ray meets the triangle within (t_min, t_max);
+   *zeros tells how many edge functions were exactly 0: 1 on an edge, 2 on
+   a vertex, where the neighbours report the same point. */
+MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c, float *t, int *zeros)
 {
     float a[3], b[3], d[3], ax, ay, bx, by, cx, cy, u, v, w, det, az, bz, cz, dist;
     int k;
@@ -1617,6 +1619,7 @@ MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c
     if (!(dist > r->t_min && dist < r->t_max))
         return 0;
     *t = dist;
+    *zeros = (u == 0.0f) + (v == 0.0f) + (w == 0.0f);
     return 1;
 }
 
@@ -1632,7 +1635,11 @@ MESHFIX__PRIVATE int meshfix__hit_box(const meshfix__ray *r, const meshfix__bvh_
             near_t = far_t;
             far_t = x;
         }
-        /* NaN (0 * inf at a slab face) compares false and keeps the interval */
+        /* a ray aimed at a vertex on the box's face has an empty interval
+           by rounding alone: widen the far side by a few ulps (Ize, "Robust
+           BVH Ray Traversal", JCGT 2013). NaN (0 * inf at a slab face)
+           compares false and keeps the interval. */
+        far_t *= 1.0000004f;
         t0 = near_t > t0 ? near_t : t0;
         t1 = far_t < t1 ? far_t : t1;
     }
@@ -1650,15 +1657,47 @@ typedef struct meshfix__query {
     unsigned int skip;           /* a triangle to ignore (the ray's own), or NONE */
     const unsigned int *group;   /* COUNT_HITS: group of each triangle */
     unsigned int skip_group;     /* COUNT_HITS: hits on this group do not count */
-    unsigned int hits;
+    unsigned int hits;           /* COUNT_HITS: crossings, each counted once */
     unsigned int triangle;       /* ANY / CLOSEST: the triangle hit */
     float t;
 } meshfix__query;
+
+/* Crossing counts must count a ray through a shared edge or vertex once:
+   every triangle around it reports the hit. An edge hit weighs a half (two
+   triangles share a manifold edge, and both see the same exact zero); a
+   vertex hit counts once per distinct distance. */
+#define MESHFIX__VERTEX_HITS 8
+typedef struct meshfix__crossings {
+    unsigned int halves;
+    float vertex_t[MESHFIX__VERTEX_HITS];
+    unsigned int vertex_count;
+} meshfix__crossings;
+
+MESHFIX__PRIVATE void meshfix__count_crossing(meshfix__crossings *c, float t, int zeros)
+{
+    unsigned int i;
+    if (zeros == 0) {
+        c->halves += 2;
+    } else if (zeros == 1) {
+        c->halves += 1;
+    } else {
+        /* the triangles around a vertex round its distance differently */
+        for (i = 0; i < c->vertex_count && !(c->vertex_t[i] - t <= 1e-6f * t && t - c->vertex_t[i] <= 1e-6f * t); ++i) {
+        }
+        if (i == c->vertex_count) {
+            c->halves += 2;
+            if (c->vertex_count < MESHFIX__VERTEX_HITS)
+                c->vertex_t[c->vertex_count++] = t;
+        }
+    }
+}
 
 MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r, meshfix__query *q)
 {
     unsigned int stack[64], depth = 0;
     float best = r->t_max;
+    meshfix__crossings crossings;
+    crossings.halves = crossings.vertex_count = 0;
     q->hits = 0;
     q->triangle = MESHFIX__NONE;
     if (b->count == 0)
@@ -1677,10 +1716,12 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
         for (i = n->first; i < n->first + n->count; ++i) {
             unsigned int id = b->order[i];
             float t;
-            if (id == q->skip || !meshfix__hit_triangle(r, b->corners + 9 * (size_t)i, &t) || t >= best)
+            int zeros;
+            if (id == q->skip || !meshfix__hit_triangle(r, b->corners + 9 * (size_t)i, &t, &zeros) || t >= best)
                 continue;
             if (q->mode == MESHFIX__COUNT_HITS) {
-                q->hits += q->group[id] != q->skip_group;
+                if (q->group[id] != q->skip_group)
+                    meshfix__count_crossing(&crossings, t, zeros);
                 continue;
             }
             q->triangle = id;
@@ -1691,6 +1732,8 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
             best = t;
         }
     }
+    if (q->mode == MESHFIX__COUNT_HITS)
+        q->hits = (crossings.halves + 1) / 2;
     return q->hits != 0;
 }
 

@@ -56,6 +56,8 @@ suite "unit, property and real-model tests" build/test_meshfix
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_meshfix_asan
 suite "SDF policy on the six shapes" build/test_sdf
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_sdf_asan
+suite "visibility, nesting, weld, rays" build/test_visibility
+suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_visibility_asan
 suite "OpenMesh as oracle" build/test_openmesh
 echo "== command-line tool"
 check "meshfix CLI repairs the demo mesh" sh -c "build/demo_mesh $out/demo.obj >/dev/null && build/meshfix --quiet $out/demo.obj $out/fixed.ply && build/meshfix --inspect $out/fixed.ply | grep -q 'inconsistent 0' && build/meshfix --inspect $out/fixed.ply | grep -q 'inside-out 0'"

@@ -316,6 +316,452 @@ static void test_cut_real(void)
     }
 }
 
+
+/* ---- open sheets ---- */
+
+/* A windshield: a quarter of a cylinder, 1.2 wide, open on all sides. */
+static void make_windshield(mio_mesh *g)
+{
+    size_t v;
+    gen_grid(g, 60, 30);
+    for (v = 0; v < g->vertex_count; ++v) {
+        float *p = g->positions + 3 * v, angle = (p[0] - 0.5f) * 1.6f;
+        float x = 2.0f * sinf(angle), z = 2.0f * cosf(angle) - 2.0f;
+        p[0] = x, p[2] = z, p[1] = p[1] * 1.2f;
+    }
+}
+
+static int consistent(double share)
+{
+    return share >= 0.999 || share <= 0.001;
+}
+
+static void test_open_sheets(void)
+{
+    mio_mesh g;
+    cut c;
+    meshfix_report r;
+    double share;
+    make_windshield(&g);
+    cut_model(&g, 30, 0.002f, 0.2, 5, &c);
+    share = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, 0, &r);
+    printf("    windshield in %lu patches: %.4f%% wound like the reference\n", (unsigned long)r.patches, 100 * share);
+    CHECK(consistent(share));
+    CHECK(repair_cut(&c, MESHFIX_POLICY_AUTO, 0, &r) == share);
+    free_cut(&c);
+    mio_free(&g);
+
+    /* a terrain: UP makes every patch face up, the visibility policy one way */
+    CHECK(gen_grid(&g, 80, 80));
+    cut_model(&g, 40, 0.002f, 0.2, 6, &c);
+    share = repair_cut(&c, MESHFIX_POLICY_UP, 0, &r);
+    CHECK(share >= 0.999);
+    share = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, 0, &r);
+    printf("    terrain in %lu patches: UP all up; VISIBILITY %.4f%% like the reference\n", (unsigned long)r.patches,
+           100 * share);
+    CHECK(consistent(share));
+    free_cut(&c);
+    mio_free(&g);
+}
+
+/* Each criterion alone fails somewhere; together they do not (the paper's
+   figures 8 and 9). Coherence alone makes a cut torus consistent but has
+   no outside to go by: the majority of the scrambled input wins, inside
+   out. Visibility alone decides each patch of a gently waving terrain by
+   itself, and both sides of a sheet see the sky: patches disagree. */
+static void test_both_criteria_needed(void)
+{
+    mio_mesh g;
+    cut c;
+    meshfix_report r;
+    double both, coherence, visibility;
+    CHECK(gen_torus(&g, 80, 30, 2, 0.6f));
+    cut_model(&g, 120, 0.002f, 0.2, 77, &c);
+    both = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, 0, &r);
+    coherence = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, MESHFIX_VISIBILITY_COHERENCE_ONLY, &r);
+    printf("    torus: both %.4f%%, coherence only %.4f%% outward\n", 100 * both, 100 * coherence);
+    CHECK(both >= 0.999);
+    CHECK(coherence < 0.999);
+    CHECK(consistent(coherence)); /* consistent, just the wrong way */
+    free_cut(&c);
+    mio_free(&g);
+
+    CHECK(gen_grid(&g, 80, 80));
+    cut_model(&g, 60, 0.002f, 0.2, 8, &c);
+    both = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, 0, &r);
+    visibility = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, MESHFIX_VISIBILITY_ONLY, &r);
+    printf("    terrain: both %.4f%%, visibility only %.4f%% like the reference\n", 100 * both, 100 * visibility);
+    CHECK(consistent(both));
+    CHECK(!consistent(visibility));
+    free_cut(&c);
+    mio_free(&g);
+}
+
+/* ---- nested shells ---- */
+
+static void reverse_range(mio_mesh *g, size_t first, size_t count)
+{
+    size_t t;
+    for (t = first; t < first + count; ++t)
+        flip(g->indices, t);
+}
+
+/* outer sphere out, a cavity in it facing in, an island in the cavity out */
+static void make_nested(mio_mesh *g, size_t *first_cavity, size_t *first_island)
+{
+    mio_mesh cavity, island;
+    gen_sphere(g, 24, 32, 0, 0, 0, 3);
+    gen_sphere(&cavity, 20, 28, 0, 0, 0, 2);
+    gen_sphere(&island, 16, 24, 0.2f, 0, 0, 1);
+    *first_cavity = g->index_count / 3;
+    gen_append(g, &cavity);
+    *first_island = g->index_count / 3;
+    gen_append(g, &island);
+    reverse_range(g, *first_cavity, *first_island - *first_cavity);
+    mio_free(&cavity);
+    mio_free(&island);
+}
+
+static void test_nested_shells(void)
+{
+    mio_mesh g;
+    size_t cavity, island;
+    unsigned int *reference, *out;
+    meshfix_report r;
+    meshfix_options o;
+    int policy;
+    make_nested(&g, &cavity, &island);
+    reference = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+    out = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+    memcpy(reference, g.indices, g.index_count * sizeof(unsigned int));
+    gen_flip_random(&g, 0.4, 3, NULL);
+    reverse_range(&g, 0, cavity); /* and the outer one mostly inside out */
+    for (policy = MESHFIX_POLICY_AUTO; policy <= MESHFIX_POLICY_OUTWARD; policy += MESHFIX_POLICY_OUTWARD) {
+        memset(&o, 0, sizeof(o));
+        o.policy = (meshfix_policy)policy;
+        CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r), MESHFIX_OK);
+        CHECK(memcmp(out, reference, g.index_count * sizeof(unsigned int)) == 0);
+        CHECK_EQ(r.shells_inward, 1);
+    }
+    free(reference);
+    free(out);
+    mio_free(&g);
+}
+
+/* The outer shell cut into unwelded patches with gaps: no closed outer
+   shell any more, yet the cavity stays inward (rays from it still cross
+   the outer patches an odd number of times, except through the gaps). */
+static void test_cavity_in_open_shell(void)
+{
+    mio_mesh outer, inner, island;
+    cut c;
+    meshfix_options o;
+    meshfix_report r;
+    unsigned int *out;
+    size_t t, first_inner, outer_triangles;
+    double share;
+    CHECK(gen_sphere(&outer, 30, 40, 0, 0, 0, 3));
+    cut_model(&outer, 40, 0.002f, 0.2, 12, &c);
+    outer_triangles = c.mesh.index_count / 3;
+    gen_sphere(&inner, 20, 28, 0, 0, 0, 2);
+    gen_sphere(&island, 16, 24, 0.2f, 0, 0, 1);
+    reverse_range(&inner, 0, inner.index_count / 3); /* the cavity's reference: inward */
+    first_inner = c.mesh.index_count / 3;
+    gen_append(&c.mesh, &inner);
+    gen_append(&c.mesh, &island);
+    c.second = (unsigned int *)realloc(c.second, c.mesh.index_count / 3 * sizeof(unsigned int));
+    for (t = first_inner; t < c.mesh.index_count / 3; ++t)
+        c.second[t] = c.mesh.indices[3 * t + 1];
+    {
+        unsigned long long seed = 4;
+        for (t = first_inner; t < c.mesh.index_count / 3; ++t)
+            if (gen_uniform(&seed) < 0.5)
+                flip(c.mesh.indices, t);
+    }
+    out = (unsigned int *)malloc(c.mesh.index_count * sizeof(unsigned int));
+    memset(&o, 0, sizeof(o));
+    CHECK_EQ(meshfix_orient(out, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r),
+             MESHFIX_OK);
+    share = outward_share(&c, out);
+    printf("    outer shell in %lu open patches with gaps, cavity, island: %.4f%% as the reference\n",
+           (unsigned long)(r.patches - 2), 100 * share);
+    CHECK(share >= 0.999);
+    CHECK_EQ(r.shells_inward, 1);
+    (void)outer_triangles;
+    free(out);
+    free_cut(&c);
+    mio_free(&outer);
+    mio_free(&inner);
+    mio_free(&island);
+}
+
+/* A glass sphere with two overlapping balls inside: the balls cross each
+   other, so neither is a cavity; all three face out. */
+static void test_intersecting_shells(void)
+{
+    mio_mesh g, a, b;
+    meshfix_report r;
+    unsigned int *reference;
+    CHECK(gen_sphere(&g, 24, 32, 0, 0, 0, 3));
+    CHECK(gen_sphere(&a, 16, 24, -0.5f, 0, 0, 1));
+    CHECK(gen_sphere(&b, 16, 24, 0.6f, 0.1f, 0, 1));
+    gen_append(&g, &a);
+    gen_append(&g, &b);
+    reference = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+    memcpy(reference, g.indices, g.index_count * sizeof(unsigned int));
+    gen_flip_random(&g, 0.6, 10, NULL);
+    CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r), MESHFIX_OK);
+    CHECK(memcmp(g.indices, reference, g.index_count * sizeof(unsigned int)) == 0);
+    CHECK_EQ(r.shells_inward, 0);
+    free(reference);
+    mio_free(&g);
+    mio_free(&a);
+    mio_free(&b);
+}
+
+static void test_mobius(void)
+{
+    mio_mesh g;
+    meshfix_report r;
+    meshfix_options o;
+    int policy;
+    CHECK(gen_mobius(&g, 40));
+    gen_flip_random(&g, 0.5, 2, NULL);
+    for (policy = 0; policy < 2; ++policy) {
+        memset(&o, 0, sizeof(o));
+        o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
+        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
+                 MESHFIX_OK);
+        CHECK_EQ(r.components_non_orientable, 1);
+        CHECK(r.edges_inconsistent >= 1 && r.edges_inconsistent <= 2);
+    }
+    mio_free(&g);
+}
+
+/* ---- independence of triangle order and of how much was flipped ---- */
+
+static void test_order_and_flip_independence(void)
+{
+    mio_mesh g;
+    cut c;
+    meshfix_report r;
+    unsigned int *out, *shuffled, *back, *perm;
+    size_t t, n;
+    unsigned long long seed = 99;
+    double share;
+    int f;
+    CHECK(gen_sphere(&g, 40, 60, 0, 0, 0, 1));
+    cut_model(&g, 80, 0.002f, 0.2, 21, &c);
+    n = c.mesh.index_count / 3;
+    out = (unsigned int *)malloc(3 * n * sizeof(unsigned int));
+    shuffled = (unsigned int *)malloc(3 * n * sizeof(unsigned int));
+    back = (unsigned int *)malloc(3 * n * sizeof(unsigned int));
+    perm = (unsigned int *)malloc(n * sizeof(unsigned int));
+    CHECK_EQ(meshfix_orient(out, c.mesh.indices, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r), MESHFIX_OK);
+    for (t = 0; t < n; ++t)
+        perm[t] = (unsigned int)t;
+    for (t = n - 1; t > 0; --t) {
+        size_t j = (size_t)(gen_random(&seed) % (t + 1));
+        unsigned int x = perm[t];
+        perm[t] = perm[j];
+        perm[j] = x;
+    }
+    for (t = 0; t < n; ++t)
+        memcpy(shuffled + 3 * t, c.mesh.indices + 3 * perm[t], 3 * sizeof(unsigned int));
+    CHECK_EQ(meshfix_orient(shuffled, shuffled, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r), MESHFIX_OK);
+    for (t = 0; t < n; ++t)
+        memcpy(back + 3 * perm[t], shuffled + 3 * t, 3 * sizeof(unsigned int));
+    CHECK(memcmp(back, out, 3 * n * sizeof(unsigned int)) == 0);
+    /* other amounts of flipping inside the patches: the same result */
+    for (f = 0; f < 3; ++f) {
+        unsigned long long s2 = 500 + (unsigned long long)f;
+        memcpy(shuffled, c.mesh.indices, 3 * n * sizeof(unsigned int));
+        for (t = 0; t < n; ++t)
+            if (gen_uniform(&s2) < 0.3 * f)
+                flip(shuffled, t);
+        CHECK_EQ(meshfix_orient(shuffled, shuffled, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r),
+                 MESHFIX_OK);
+        CHECK(memcmp(shuffled, out, 3 * n * sizeof(unsigned int)) == 0);
+    }
+    share = outward_share(&c, out);
+    CHECK(share >= 0.999);
+    free(out);
+    free(shuffled);
+    free(back);
+    free(perm);
+    free_cut(&c);
+    mio_free(&g);
+}
+
+/* ---- parallel_for: bit-identical ---- */
+
+static void backwards_parallel_for(void (*task)(void *, size_t), void *context, size_t count, void *user)
+{
+    size_t i;
+    (*(int *)user)++;
+    for (i = count; i-- > 0;)
+        task(context, i);
+}
+
+static void test_parallel_for_identical(void)
+{
+    mio_mesh g;
+    cut c;
+    meshfix_options o;
+    meshfix_report r1, r2;
+    float conf1[512], conf2[512];
+    unsigned int *a, *b;
+    int calls = 0;
+    CHECK(gen_torus(&g, 60, 24, 2, 0.6f));
+    cut_model(&g, 90, 0.002f, 0.3, 31, &c);
+    a = (unsigned int *)malloc(c.mesh.index_count * sizeof(unsigned int));
+    b = (unsigned int *)malloc(c.mesh.index_count * sizeof(unsigned int));
+    memset(&o, 0, sizeof(o));
+    o.policy = MESHFIX_POLICY_VISIBILITY;
+    o.patch_confidence = conf1;
+    o.patch_confidence_capacity = 512;
+    CHECK_EQ(meshfix_orient(a, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r1),
+             MESHFIX_OK);
+    o.parallel_for = backwards_parallel_for;
+    o.parallel_user = &calls;
+    o.patch_confidence = conf2;
+    CHECK_EQ(meshfix_orient(b, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r2),
+             MESHFIX_OK);
+    CHECK(calls == 1);
+    CHECK(memcmp(a, b, c.mesh.index_count * sizeof(unsigned int)) == 0);
+    CHECK(memcmp(&r1, &r2, sizeof(r1)) == 0);
+    CHECK(memcmp(conf1, conf2, r1.patches * sizeof(float)) == 0);
+    CHECK(r1.patches < 512);
+    {
+        size_t p;
+        for (p = 0; p < r1.patches; ++p)
+            CHECK(conf1[p] >= 0.0f && conf1[p] <= 1.0f);
+    }
+    free(a);
+    free(b);
+    free_cut(&c);
+    mio_free(&g);
+}
+
+/* ---- weld ---- */
+
+static void test_weld(void)
+{
+    mio_mesh g;
+    size_t t, corners, unique;
+    float *soup, nan_soup[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    unsigned int *remap, *indices, untouched[3] = {7, 7, 7};
+    meshfix_report r;
+    unsigned long long seed = 3;
+    CHECK(gen_sphere(&g, 20, 30, 0, 0, 0, 1));
+    corners = g.index_count;
+    soup = (float *)malloc(3 * corners * sizeof(float));
+    remap = (unsigned int *)malloc(corners * sizeof(unsigned int));
+    indices = (unsigned int *)malloc(corners * sizeof(unsigned int));
+    for (t = 0; t < corners; ++t)
+        memcpy(soup + 3 * t, g.positions + 3 * (size_t)g.indices[t], 3 * sizeof(float));
+    /* exact: the soup becomes the sphere again */
+    CHECK_EQ(meshfix_weld(remap, soup, corners, 12, 0.0f, NULL, &unique), MESHFIX_OK);
+    CHECK_EQ(unique, g.vertex_count);
+    for (t = 0; t < corners; ++t)
+        indices[t] = remap[t];
+    CHECK_EQ(meshfix_inspect(indices, corners, soup, corners, 12, &r), MESHFIX_OK);
+    CHECK_EQ(r.components, 1);
+    CHECK_EQ(r.edges_boundary, 0);
+    CHECK_EQ(r.euler_characteristic, 2);
+    /* jittered corners: welded by a tolerance, not without one */
+    for (t = 0; t < 3 * corners; ++t)
+        soup[t] += (float)(gen_uniform(&seed) - 0.5) * 2e-5f;
+    CHECK_EQ(meshfix_weld(remap, soup, corners, 12, 0.0f, NULL, &unique), MESHFIX_OK);
+    CHECK_EQ(unique, corners);
+    CHECK_EQ(meshfix_weld(remap, soup, corners, 12, 1e-3f, NULL, &unique), MESHFIX_OK);
+    CHECK_EQ(unique, g.vertex_count);
+    for (t = 0; t < corners; ++t)
+        CHECK(remap[remap[t]] == remap[t] && remap[t] <= t);
+    /* -0 welds to +0; NaN is refused and remap left alone */
+    nan_soup[3] = -0.0f, nan_soup[0] = 0.0f, nan_soup[6] = 0.0f, nan_soup[4] = 0.0f;
+    CHECK_EQ(meshfix_weld(untouched, nan_soup, 3, 12, 0.0f, NULL, &unique), MESHFIX_OK);
+    CHECK_EQ(unique, 2);
+    nan_soup[7] = (float)NAN;
+    untouched[0] = untouched[1] = untouched[2] = 7;
+    CHECK_EQ(meshfix_weld(untouched, nan_soup, 3, 12, 0.0f, NULL, &unique), MESHFIX_ERROR_NON_FINITE);
+    CHECK(untouched[0] == 7 && untouched[1] == 7 && untouched[2] == 7);
+    CHECK_EQ(meshfix_weld(untouched, nan_soup, 3, 8, 0.0f, NULL, &unique), MESHFIX_ERROR_INVALID_ARGUMENT);
+    CHECK_EQ(meshfix_weld(untouched, nan_soup, 3, 12, -1.0f, NULL, &unique), MESHFIX_ERROR_INVALID_ARGUMENT);
+    free(soup);
+    free(remap);
+    free(indices);
+    mio_free(&g);
+}
+
+/* ---- the ray caster ---- */
+
+/* Rays from the centre of a closed sphere aimed exactly at its vertices and
+   edge midpoints: each crosses the surface exactly once (no leak through a
+   shared vertex or edge, no double hit), at the right distance. */
+static void test_watertight_rays(void)
+{
+    mio_mesh g;
+    meshfix__plan plan;
+    meshfix__mesh m;
+    meshfix__bvh bvh;
+    meshfix_allocator allocator;
+    unsigned char *block;
+    unsigned int *group;
+    size_t v, t, bad = 0, rays = 0;
+    CHECK(gen_sphere(&g, 18, 26, 0.1f, -0.2f, 0.3f, 1.5f));
+    meshfix__make_plan(&plan, g.vertex_count, g.index_count / 3);
+    block = (unsigned char *)malloc(plan.total + 16);
+    meshfix__bind(&m, block + (16 - (size_t)block % 16) % 16, &plan, g.indices, g.index_count, g.positions, 12,
+                  g.vertex_count, NULL, 0);
+    meshfix__mark_degenerate(&m);
+    memset(&allocator, 0, sizeof(allocator));
+    CHECK(meshfix__build_bvh(&bvh, &m, &allocator, meshfix__has_area));
+    group = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
+    for (v = 0; v < g.vertex_count + g.index_count; ++v) {
+        const float centre[3] = {0.1f, -0.2f, 0.3f};
+        float target[3], d[3];
+        meshfix__ray ray;
+        meshfix__query q;
+        int k;
+        if (v < g.vertex_count) {
+            memcpy(target, g.positions + 3 * v, sizeof(target));
+        } else {
+            size_t h = v - g.vertex_count, next = h % 3 == 2 ? h - 2 : h + 1;
+            for (k = 0; k < 3; ++k)
+                target[k] = 0.5f * (g.positions[3 * (size_t)g.indices[h] + k] + g.positions[3 * (size_t)g.indices[next] + k]);
+        }
+        for (k = 0; k < 3; ++k)
+            d[k] = target[k] - centre[k];
+        meshfix__setup_ray(&ray, centre, d, 0.0f, 1e30f);
+        q.mode = MESHFIX__COUNT_HITS;
+        q.skip = MESHFIX__NONE;
+        q.group = group;
+        q.skip_group = 1;
+        meshfix__trace(&bvh, &ray, &q);
+        bad += q.hits != 1;
+        q.mode = MESHFIX__CLOSEST_HIT;
+        meshfix__trace(&bvh, &ray, &q);
+        bad += !(q.hits == 1 && fabsf(q.t - 1.0f) < 1e-4f);
+        rays++;
+    }
+    for (t = 0; t < 64; ++t) { /* from outside, pointing away: nothing */
+        const float from[3] = {5, 5, 5}, away[3] = {1, 0.5f, 0.25f};
+        meshfix__ray ray;
+        meshfix__query q;
+        meshfix__setup_ray(&ray, from, away, 0.0f, 1e30f);
+        q.mode = MESHFIX__ANY_HIT;
+        q.skip = MESHFIX__NONE;
+        bad += meshfix__trace(&bvh, &ray, &q);
+    }
+    printf("    %lu rays through vertices and edges: %lu wrong\n", (unsigned long)rays, (unsigned long)bad);
+    CHECK_EQ(bad, 0);
+    meshfix__free_bvh(&bvh, &allocator);
+    free(group);
+    free(block);
+    mio_free(&g);
+}
+
 typedef struct test_case {
     const char *name;
     void (*run)(void);
@@ -324,6 +770,16 @@ typedef struct test_case {
 static const test_case tests[] = {
     {"generated closed models cut into unwelded patches with gaps", test_cut_generated},
     {"real closed models cut into unwelded patches with gaps", test_cut_real},
+    {"open sheets: windshield, terrain", test_open_sheets},
+    {"coherence alone and visibility alone each fail; together not", test_both_criteria_needed},
+    {"nested spheres: out, in, out", test_nested_shells},
+    {"cavity inside an outer shell that has gaps stays inward", test_cavity_in_open_shell},
+    {"intersecting shells all face out", test_intersecting_shells},
+    {"Moebius strip: reported, no crash", test_mobius},
+    {"independent of triangle order and of how much was flipped", test_order_and_flip_independence},
+    {"parallel_for gives bit-identical results; confidence in [0, 1]", test_parallel_for_identical},
+    {"weld: exact, tolerance, -0, NaN", test_weld},
+    {"watertight rays through shared vertices and edges", test_watertight_rays},
 };
 
 int main(int argc, char **argv)
