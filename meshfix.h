@@ -1319,7 +1319,7 @@ MESHFIX__PRIVATE int meshfix__decide_patch(const meshfix__mesh *m, unsigned int 
    of closed surfaces are exact parities. */
 
 typedef struct meshfix__bvh_node {
-    float low[3], high[3];
+    float bounds[6];    /* low x y z, high x y z */
     unsigned int first; /* leaf: first slot in `order`; inner: left child (right = left + 1) */
     unsigned int count; /* leaf: triangles; inner: 0 */
 } meshfix__bvh_node;
@@ -1338,6 +1338,7 @@ typedef struct meshfix__ray {
     float origin[3], direction[3], inverse[3];
     float shear[3];
     int kx, ky, kz;
+    int near_side[3];   /* per axis, the index in a node's bounds of the near side */
     float t_min, t_max;
 } meshfix__ray;
 
@@ -1474,12 +1475,12 @@ MESHFIX__PRIVATE void meshfix__fit_node(meshfix__bvh *b, meshfix__bvh_node *n, u
     unsigned int i;
     int k;
     for (k = 0; k < 3; ++k)
-        n->low[k] = 1e30f, n->high[k] = -1e30f;
+        n->bounds[k] = 1e30f, n->bounds[3 + k] = -1e30f;
     for (i = first; i < first + count; ++i) {
         const float *c = b->corners + 9 * (size_t)i;
-        meshfix__grow_box(n->low, n->high, c);
-        meshfix__grow_box(n->low, n->high, c + 3);
-        meshfix__grow_box(n->low, n->high, c + 6);
+        meshfix__grow_box(n->bounds, n->bounds + 3, c);
+        meshfix__grow_box(n->bounds, n->bounds + 3, c + 3);
+        meshfix__grow_box(n->bounds, n->bounds + 3, c + 6);
     }
 }
 
@@ -1518,7 +1519,7 @@ MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m,
     b->nodes[0].count = n;
     meshfix__fit_node(b, &b->nodes[0], 0, n);
     for (k = 0; k < 3; ++k)
-        b->low[k] = b->nodes[0].low[k], b->high[k] = b->nodes[0].high[k];
+        b->low[k] = b->nodes[0].bounds[k], b->high[k] = b->nodes[0].bounds[3 + k];
     b->diagonal = n == 0 ? 0.0 : MESHFIX_SQRT((double)(b->high[0] - b->low[0]) * (b->high[0] - b->low[0]) +
                                                (double)(b->high[1] - b->low[1]) * (b->high[1] - b->low[1]) +
                                                (double)(b->high[2] - b->low[2]) * (b->high[2] - b->low[2]));
@@ -1563,6 +1564,7 @@ MESHFIX__PRIVATE void meshfix__setup_ray(meshfix__ray *r, const float origin[3],
         r->origin[k] = origin[k];
         r->direction[k] = direction[k];
         r->inverse[k] = 1.0f / direction[k];
+        r->near_side[k] = r->inverse[k] < 0 ? k + 3 : k;
     }
     r->kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     r->kx = (r->kz + 1) % 3;
@@ -1623,27 +1625,28 @@ MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c
     return 1;
 }
 
-MESHFIX__PRIVATE int meshfix__hit_box(const meshfix__ray *r, const meshfix__bvh_node *n, float t_max)
+/* Slab test; returns the entry distance, or a negative value for a miss.
+   A ray aimed at a vertex on the box's face has an empty interval by
+   rounding alone: the far side is widened by a few ulps (Ize, "Robust BVH
+   Ray Traversal", JCGT 2013). */
+MESHFIX__PRIVATE float meshfix__hit_box(const meshfix__ray *r, const meshfix__bvh_node *n, float t_max)
 {
+    const float *bounds = n->bounds;
+    float tx0 = (bounds[r->near_side[0]] - r->origin[0]) * r->inverse[0];
+    float tx1 = (bounds[3 - r->near_side[0]] - r->origin[0]) * r->inverse[0] * 1.0000004f;
+    float ty0 = (bounds[r->near_side[1]] - r->origin[1]) * r->inverse[1];
+    float ty1 = (bounds[5 - r->near_side[1]] - r->origin[1]) * r->inverse[1] * 1.0000004f;
+    float tz0 = (bounds[r->near_side[2]] - r->origin[2]) * r->inverse[2];
+    float tz1 = (bounds[7 - r->near_side[2]] - r->origin[2]) * r->inverse[2] * 1.0000004f;
     float t0 = r->t_min, t1 = t_max;
-    int k;
-    for (k = 0; k < 3; ++k) {
-        float near_t = (n->low[k] - r->origin[k]) * r->inverse[k];
-        float far_t = (n->high[k] - r->origin[k]) * r->inverse[k];
-        if (near_t > far_t) {
-            float x = near_t;
-            near_t = far_t;
-            far_t = x;
-        }
-        /* a ray aimed at a vertex on the box's face has an empty interval
-           by rounding alone: widen the far side by a few ulps (Ize, "Robust
-           BVH Ray Traversal", JCGT 2013). NaN (0 * inf at a slab face)
-           compares false and keeps the interval. */
-        far_t *= 1.0000004f;
-        t0 = near_t > t0 ? near_t : t0;
-        t1 = far_t < t1 ? far_t : t1;
-    }
-    return t0 <= t1;
+    /* NaN (0 * inf at a slab face) compares false and keeps the interval */
+    t0 = tx0 > t0 ? tx0 : t0;
+    t0 = ty0 > t0 ? ty0 : t0;
+    t0 = tz0 > t0 ? tz0 : t0;
+    t1 = tx1 < t1 ? tx1 : t1;
+    t1 = ty1 < t1 ? ty1 : t1;
+    t1 = tz1 < t1 ? tz1 : t1;
+    return t0 <= t1 ? t0 : -1.0f;
 }
 
 /* What a traversal looks for: the first hit, the closest, or the number of
@@ -1702,15 +1705,26 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
     q->triangle = MESHFIX__NONE;
     if (b->count == 0)
         return 0;
+    if (meshfix__hit_box(r, &b->nodes[0], best) < 0)
+        return 0;
     stack[depth++] = 0;
     while (depth > 0) {
         const meshfix__bvh_node *n = &b->nodes[stack[--depth]];
         unsigned int i;
-        if (!meshfix__hit_box(r, n, best))
-            continue;
         if (n->count == 0) {
-            stack[depth++] = n->first + 1;
-            stack[depth++] = n->first;
+            /* both children tested here; the nearer one is visited first */
+            float near_t = meshfix__hit_box(r, &b->nodes[n->first], best);
+            float far_t = meshfix__hit_box(r, &b->nodes[n->first + 1], best);
+            unsigned int near_node = n->first, far_node = n->first + 1;
+            if (far_t >= 0 && (near_t < 0 || far_t < near_t)) {
+                float x = near_t;
+                near_t = far_t, far_t = x;
+                near_node = n->first + 1, far_node = n->first;
+            }
+            if (far_t >= 0)
+                stack[depth++] = far_node;
+            if (near_t >= 0)
+                stack[depth++] = near_node;
             continue;
         }
         for (i = n->first; i < n->first + n->count; ++i) {

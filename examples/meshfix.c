@@ -1,9 +1,11 @@
 /* meshfix - command-line winding repair built on meshfix.h
 
-   usage: meshfix [--policy auto|seed|majority|outward] [--mark FILE.ply]
-                  [--inspect] [--quiet] INPUT OUTPUT
+   usage: meshfix [--policy auto|seed|majority|outward|visibility|up]
+                  [--weld TOLERANCE] [--mark FILE.ply] [--inspect] [--quiet]
+                  INPUT OUTPUT
 
-   Reads INPUT (.obj .off .stl .ply), prints the inspect report, repairs the
+   Reads INPUT (.obj .off .stl .ply), --weld merges vertices closer than
+   TOLERANCE (polygon soups, CAD exports), prints the inspect report, repairs the
    winding with the chosen policy, prints the report of the result and
    writes OUTPUT in the format its extension names. --mark writes the
    result with face colours: flipped faces red, the others tinted by patch.
@@ -19,8 +21,42 @@
 #include <string.h>
 
 /* the policies a file can use (SDF needs a function: see sdf_demo.c) */
-#define POLICY_NAMES 4
-static const char *const policy_names[POLICY_NAMES] = {"auto", "seed", "majority", "outward"};
+#define POLICY_NAMES 6
+static const char *const policy_names[POLICY_NAMES] = {"auto", "seed", "majority", "outward", "visibility", "up"};
+static const meshfix_policy policy_values[POLICY_NAMES] = {MESHFIX_POLICY_AUTO,    MESHFIX_POLICY_SEED,
+                                                           MESHFIX_POLICY_MAJORITY, MESHFIX_POLICY_OUTWARD,
+                                                           MESHFIX_POLICY_VISIBILITY, MESHFIX_POLICY_UP};
+
+static const char *policy_name(meshfix_policy p)
+{
+    int i;
+    for (i = 0; i < POLICY_NAMES; ++i)
+        if (policy_values[i] == p)
+            return policy_names[i];
+    return "?";
+}
+
+/* Merges vertices closer than `tolerance` and rewrites the indices. */
+static int weld(mio_mesh *mesh, float tolerance)
+{
+    unsigned int *remap = (unsigned int *)malloc(mesh->vertex_count * sizeof(unsigned int) + 1);
+    size_t i, unique = 0;
+    meshfix_result r;
+    if (remap == NULL)
+        return 0;
+    r = meshfix_weld(remap, mesh->positions, mesh->vertex_count, 12, tolerance, NULL, &unique);
+    if (r != MESHFIX_OK) {
+        fprintf(stderr, "meshfix: weld: %s\n", meshfix_result_string(r));
+        free(remap);
+        return 0;
+    }
+    for (i = 0; i < mesh->index_count; ++i)
+        mesh->indices[i] = remap[mesh->indices[i]];
+    printf("welded %lu vertices into %lu (tolerance %g)\n", (unsigned long)mesh->vertex_count, (unsigned long)unique,
+           (double)tolerance);
+    free(remap);
+    return 1;
+}
 
 static void print_report(const char *title, const meshfix_report *r)
 {
@@ -39,6 +75,10 @@ static void print_report(const char *title, const meshfix_report *r)
            (unsigned long)r->components, (unsigned long)r->components_closed,
            (unsigned long)r->components_non_orientable, r->euler_characteristic);
     printf("  area %.6g, signed volume of closed patches %.6g\n", r->area, r->signed_volume);
+    if (r->rays_cast != 0 || r->shells_inward != 0)
+        printf("  visibility: %lu rays cast, %lu patch pairs, %lu merges, %lu pairs left against their coherence, "
+               "%lu cavities\n", (unsigned long)r->rays_cast, (unsigned long)r->patch_pairs,
+               (unsigned long)r->patches_merged, (unsigned long)r->pairs_conflicting, (unsigned long)r->shells_inward);
 }
 
 /* Flipped faces red; the rest a muted colour per patch, so patch seams show. */
@@ -65,8 +105,9 @@ static unsigned char *face_colours(const unsigned char *flipped, const unsigned 
 
 static int usage(void)
 {
-    fprintf(stderr, "usage: meshfix [--policy auto|seed|majority|outward] [--mark FILE.ply] [--quiet] INPUT OUTPUT\n"
-                    "       meshfix --inspect INPUT\n");
+    fprintf(stderr, "usage: meshfix [--policy auto|seed|majority|outward|visibility|up] [--weld TOLERANCE]\n"
+                    "               [--mark FILE.ply] [--quiet] INPUT OUTPUT\n"
+                    "       meshfix --inspect [--weld TOLERANCE] INPUT\n");
     return 1;
 }
 
@@ -74,6 +115,7 @@ int main(int argc, char **argv)
 {
     const char *input = NULL, *output = NULL, *mark = NULL;
     int quiet = 0, inspect_only = 0, i, status = 0;
+    float weld_tolerance = -1.0f;
     char error[256];
     mio_mesh mesh;
     meshfix_options options;
@@ -91,8 +133,15 @@ int main(int argc, char **argv)
                 fprintf(stderr, "meshfix: unknown policy '%s'\n", argv[i + 1]);
                 return 1;
             }
-            options.policy = (meshfix_policy)p;
+            options.policy = policy_values[p];
             ++i;
+        } else if (strcmp(argv[i], "--weld") == 0 && i + 1 < argc) {
+            char *end;
+            weld_tolerance = strtof(argv[++i], &end);
+            if (*end != 0 || !(weld_tolerance >= 0.0f)) {
+                fprintf(stderr, "meshfix: --weld takes a tolerance >= 0, not '%s'\n", argv[i]);
+                return 1;
+            }
         } else if (strcmp(argv[i], "--mark") == 0 && i + 1 < argc) {
             size_t n = strlen(argv[++i]);
             mark = argv[i];
@@ -121,6 +170,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "meshfix: %s: %s\n", input, error);
         return 1;
     }
+    if (weld_tolerance >= 0.0f && !weld(&mesh, weld_tolerance)) {
+        mio_free(&mesh);
+        return 2;
+    }
     r = meshfix_inspect(mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12, &before);
     if (r != MESHFIX_OK) {
         fprintf(stderr, "meshfix: %s: %s\n", input, meshfix_result_string(r));
@@ -146,7 +199,7 @@ int main(int argc, char **argv)
         status = 2;
     } else {
         if (!quiet) {
-            printf("repair (policy %s): flipped %lu of %lu triangles\n", policy_names[options.policy],
+            printf("repair (policy %s): flipped %lu of %lu triangles\n", policy_name(options.policy),
                    (unsigned long)after.triangles_flipped, (unsigned long)after.triangles);
             print_report(output, &after);
         }

@@ -26,6 +26,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <algorithm>
+#include <map>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -137,6 +138,145 @@ static int bench_sdf(bool quick)
     return status;
 }
 
+
+// A closed model cut into patches that share no vertices: triangles are
+// grouped by the cell of a grid their centroid falls in, every group gets
+// its own copy of its vertices, and half of the groups are reversed.
+static void cut_by_grid(const mio_mesh &g, int cells, mio_mesh *out, size_t *groups)
+{
+    size_t triangles = g.index_count / 3;
+    std::vector<unsigned long long> key(g.index_count);
+    std::map<unsigned long long, unsigned int> copy;
+    std::map<unsigned int, unsigned int> group_id;
+    out->positions = (float *)std::malloc(3 * g.index_count * sizeof(float));
+    out->indices = (unsigned int *)std::malloc(g.index_count * sizeof(unsigned int));
+    out->index_count = g.index_count;
+    out->vertex_count = 0;
+    for (size_t t = 0; t < triangles; ++t) {
+        float c[3] = {0, 0, 0};
+        for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a)
+                c[a] += g.positions[3 * g.indices[3 * t + k] + a] / 3.0f;
+        unsigned int cell = 0;
+        for (int a = 0; a < 3; ++a)
+            cell = cell * unsigned(cells) + unsigned(std::min(cells - 1, std::max(0, int((c[a] + 1.0f) * 0.5f * cells))));
+        unsigned int group = group_id.emplace(cell, unsigned(group_id.size())).first->second;
+        for (int k = 0; k < 3; ++k) {
+            unsigned long long id = (unsigned long long)group << 32 | g.indices[3 * t + k];
+            auto it = copy.find(id);
+            if (it == copy.end()) {
+                it = copy.emplace(id, unsigned(out->vertex_count)).first;
+                std::memcpy(out->positions + 3 * out->vertex_count, g.positions + 3 * g.indices[3 * t + k], 12);
+                out->vertex_count++;
+            }
+            out->indices[3 * t + k] = it->second;
+        }
+        if (group % 2)
+            std::swap(out->indices[3 * t + 1], out->indices[3 * t + 2]);
+    }
+    *groups = group_id.size();
+}
+
+// Incoherent rays: random origins in the bounding box, random directions.
+static void bench_rays(const mio_mesh &g)
+{
+    meshfix__plan plan;
+    meshfix__mesh m;
+    meshfix__make_plan(&plan, g.vertex_count, g.index_count / 3);
+    std::vector<unsigned char> block(plan.total + 16);
+    unsigned char *aligned = block.data() + (16 - size_t(block.data()) % 16) % 16;
+    meshfix__bind(&m, aligned, &plan, g.indices, g.index_count, g.positions, 12, g.vertex_count, nullptr, 0);
+    meshfix__mark_degenerate(&m);
+    meshfix_allocator allocator;
+    std::memset(&allocator, 0, sizeof(allocator));
+    meshfix__bvh bvh;
+    auto start = std::chrono::steady_clock::now();
+    meshfix__build_bvh(&bvh, &m, &allocator, meshfix__has_area);
+    double build = seconds_since(start);
+    const int rays = 1000000;
+    std::vector<float> rays_data(6 * size_t(rays));
+    unsigned int state = 1;
+    for (int i = 0; i < rays; ++i) {
+        for (int k = 0; k < 3; ++k)
+            rays_data[6 * i + k] = bvh.low[k] + (bvh.high[k] - bvh.low[k]) * meshfix__random(&state);
+        meshfix__random_direction(&state, &rays_data[6 * i + 3]);
+    }
+    unsigned int hits = 0;
+    for (int mode = 0; mode < 2; ++mode) {
+        double t = fastest(3, [&] {
+            hits = 0;
+            for (int i = 0; i < rays; ++i) {
+                meshfix__ray ray;
+                meshfix__query q;
+                meshfix__setup_ray(&ray, &rays_data[6 * i], &rays_data[6 * i + 3], 0.0f, 1e30f);
+                q.mode = mode == 0 ? MESHFIX__CLOSEST_HIT : MESHFIX__ANY_HIT;
+                q.skip = MESHFIX__NONE;
+                hits += (unsigned)meshfix__trace(&bvh, &ray, &q);
+            }
+        });
+        std::printf("| %s | %zu | %.2f | %.1f%% | %.0f |\n", mode == 0 ? "closest hit" : "any hit", g.index_count / 3,
+                    rays / t / 1e6, 100.0 * hits / rays, 1e3 * build);
+    }
+    meshfix__free_bvh(&bvh, &allocator);
+}
+
+static int bench_visibility(bool quick)
+{
+    mio_mesh g, cutm;
+    if (!gen_sphere(&g, quick ? 101 : 501, quick ? 200 : 1000, 0, 0, 0, 1))
+        return 1;
+    std::printf("\nRay caster, one core, 1M incoherent rays (origins in the box, random directions), BVH over a sphere:\n\n");
+    std::printf("| query | triangles | Mrays/s | rays that hit | BVH build ms |\n|---|---:|---:|---:|---:|\n");
+    bench_rays(g);
+    size_t groups = 0;
+    cut_by_grid(g, quick ? 6 : 12, &cutm, &groups);
+    size_t triangles = cutm.index_count / 3;
+    std::vector<unsigned int> out(cutm.index_count);
+    PeakAllocator counter;
+    meshfix_options options;
+    std::memset(&options, 0, sizeof(options));
+    options.allocator.alloc_fn = peak_alloc;
+    options.allocator.free_fn = peak_free;
+    options.allocator.user_data = &counter;
+    meshfix_report report;
+    int status = 0;
+    options.policy = MESHFIX_POLICY_MAJORITY;
+    double flood = fastest(3, [&] {
+        status |= meshfix_orient(out.data(), cutm.indices, cutm.index_count, nullptr, cutm.vertex_count, 12, &options,
+                                 nullptr) != MESHFIX_OK;
+    });
+    counter = PeakAllocator();
+    options.policy = MESHFIX_POLICY_VISIBILITY;
+    double visibility = fastest(3, [&] {
+        status |= meshfix_orient(out.data(), cutm.indices, cutm.index_count, cutm.positions, cutm.vertex_count, 12,
+                                 &options, &report) != MESHFIX_OK;
+    });
+    // every patch must face out again: compare with the uncut sphere's winding
+    size_t outward = 0;
+    for (size_t t = 0; t < triangles; ++t) {
+        const float *a = cutm.positions + 3 * out[3 * t], *b = cutm.positions + 3 * out[3 * t + 1];
+        const float *c = cutm.positions + 3 * out[3 * t + 2];
+        float u[3], v[3], n[3];
+        for (int k = 0; k < 3; ++k)
+            u[k] = b[k] - a[k], v[k] = c[k] - a[k];
+        n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
+        outward += n[0] * (a[0] + b[0] + c[0]) + n[1] * (a[1] + b[1] + c[1]) + n[2] * (a[2] + b[2] + c[2]) > 0;
+    }
+    std::printf("\nVisibility policy on a sphere of %zu triangles cut into %zu unwelded patches, half reversed:\n\n",
+                triangles, report.patches);
+    std::printf("| repair | seconds | ns / triangle | time / flood fill | peak bytes / triangle | rays | outward |\n"
+                "|---|---:|---:|---:|---:|---:|---:|\n");
+    std::printf("| flood fill (topology only) | %.3f | %.1f | 1.0x | | | |\n", flood, 1e9 * flood / triangles);
+    std::printf("| visibility + coherence | %.3f | %.1f | %.1fx | %.1f | %zu | %.2f%% |\n", visibility,
+                1e9 * visibility / triangles, visibility / flood, double(counter.peak) / triangles, report.rays_cast,
+                100.0 * outward / triangles);
+    if (outward != triangles)
+        status = 1;
+    mio_free(&g);
+    mio_free(&cutm);
+    return status;
+}
+
 int main(int argc, char **argv)
 {
     // rings x segments of a UV sphere: 2 * segments * (rings - 1) triangles
@@ -217,5 +357,6 @@ int main(int argc, char **argv)
         std::fflush(stdout);
         mio_free(&g);
     }
-    return status | bench_sdf(count == 2);
+    status |= bench_sdf(count == 2);
+    return status | bench_visibility(count == 2);
 }
