@@ -40,6 +40,12 @@ $(B)/test_visibility: tests/test_visibility.c $(HEADERS) | $(B)
 $(B)/test_visibility_asan: tests/test_visibility.c $(HEADERS) | $(B)
 	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ tests/test_visibility.c -lm
 
+$(B)/test_hostile: tests/test_hostile.c $(HEADERS) | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_hostile.c -lm
+
+$(B)/test_hostile_asan: tests/test_hostile.c $(HEADERS) | $(B)
+	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ tests/test_hostile.c -lm
+
 $(B)/test_openmesh: tests/test_openmesh.cpp $(HEADERS) | $(B)
 	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -o $@ tests/test_openmesh.cpp $(OPENMESH)
 
@@ -58,7 +64,7 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@echo "wrote $(B)/demo_fixed.obj and $(B)/demo_marked.ply (flipped faces red; open it in MeshLab or Blender)"
 
 test: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(B)/test_meshfix $(B)/test_meshfix_asan $(B)/test_sdf $(B)/test_sdf_asan \
-      $(B)/test_visibility $(B)/test_visibility_asan $(B)/test_openmesh
+      $(B)/test_visibility $(B)/test_visibility_asan $(B)/test_hostile $(B)/test_hostile_asan $(B)/test_openmesh
 	@CC="$(CC)" CXX="$(CXX)" bash tests/run_all.sh
 
 bench: $(B)/bench

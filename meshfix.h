@@ -244,9 +244,10 @@ typedef struct meshfix_options {
     meshfix_sdf_mode sdf_mode;
     /* MESHFIX_POLICY_VISIBILITY (and AUTO for what is not a closed shell).
        Rays: per patch proportional to area, at least visibility_min_samples
-       (default 32), visibility_rays in all (default 256 per patch, within
-       65536 .. 4194304); the floor gives way when the patches alone would
-       exceed the budget. Coherence: boundary edges of other patches closer
+       (default 16), visibility_rays in all (default 128 per patch, within
+       65536 .. 1048576); the floor gives way when the patches alone would
+       exceed the budget. A ray that visits more than 1024 tree nodes (a
+       stack of coincident triangles) counts as blocked. Coherence: boundary edges of other patches closer
        than coherence_distance (a fraction of the longest bounding-box side,
        default 0.02). Merge thresholds of the paper: C0 (visibility_c0,
        default 0.5: |c| / l, 1 for coincident opposite edges), eps_v
@@ -1695,9 +1696,16 @@ MESHFIX__PRIVATE void meshfix__count_crossing(meshfix__crossings *c, float t, in
     }
 }
 
+/* A ray that has visited this many nodes is taken as blocked (or stops
+   counting). Ordinary rays visit a few dozen; a stack of coincident
+   triangles or a fan of thousands of thin ones puts every box across a
+   ray's path, and without a bound the rays of a model would cost the
+   square of its size. */
+#define MESHFIX__RAY_WORK 1024
+
 MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r, meshfix__query *q)
 {
-    unsigned int stack[64], depth = 0;
+    unsigned int stack[64], depth = 0, work = 0;
     float best = r->t_max;
     meshfix__crossings crossings;
     crossings.halves = crossings.vertex_count = 0;
@@ -1711,6 +1719,11 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
     while (depth > 0) {
         const meshfix__bvh_node *n = &b->nodes[stack[--depth]];
         unsigned int i;
+        if (++work > MESHFIX__RAY_WORK) {
+            if (q->mode == MESHFIX__ANY_HIT)
+                q->hits = 1;
+            break;
+        }
         if (n->count == 0) {
             /* both children tested here; the nearer one is visited first */
             float near_t = meshfix__hit_box(r, &b->nodes[n->first], best);
@@ -1905,22 +1918,25 @@ MESHFIX__PRIVATE void meshfix__visibility_chunk(void *context, size_t chunk)
     }
 }
 
-/* Samples per patch: proportional to area over the budget, at least a
-   floor (lowered when the patches alone would exceed the budget). */
+/* Samples per patch: proportional to area within the budget, at least a
+   floor each; when the floors alone would exceed the budget, strictly by
+   area (small patches may get none: they tie and fall back to majority). */
 MESHFIX__PRIVATE void meshfix__plan_samples(meshfix__geometry *g, double total_area)
 {
     const meshfix_options *o = g->o;
-    size_t patches = g->m->patch_count, budget, floor_count, p, sum = 0;
-    budget = o != NULL && o->visibility_rays != 0 ? o->visibility_rays : patches * 256;
-    budget = o != NULL && o->visibility_rays != 0 ? budget : (budget < 65536 ? 65536 : budget > 4194304 ? 4194304 : budget);
-    floor_count = o != NULL && o->visibility_min_samples != 0 ? o->visibility_min_samples : 32;
-    if (floor_count * patches > budget)
-        floor_count = budget / patches > 0 ? budget / patches : 1;
+    size_t patches = g->m->patch_count, budget, floor_count, p, sum = 0, spread;
+    budget = o->visibility_rays != 0 ? o->visibility_rays : patches * 128;
+    if (o->visibility_rays == 0)
+        budget = budget < 65536 ? 65536 : budget > 1048576 ? 1048576 : budget;
+    floor_count = o->visibility_min_samples != 0 ? o->visibility_min_samples : 16;
+    if (floor_count > budget / (patches ? patches : 1))
+        floor_count = budget / (patches ? patches : 1);
+    spread = budget - floor_count * patches;
     for (p = 0; p < patches; ++p) {
         double share = total_area > 0 ? g->patch_area[p] / total_area : 0.0;
-        size_t n = floor_count + (size_t)((double)(budget - (budget > floor_count * patches ? floor_count * patches : budget)) * share);
+        size_t n = g->patch_area[p] > 0 ? floor_count + (size_t)((double)spread * share) : 0;
         g->sample_start[p] = (unsigned int)sum;
-        sum += g->patch_area[p] > 0 ? n : 0;
+        sum += n;
     }
     g->sample_start[patches] = (unsigned int)sum;
     g->sample_count = (unsigned int)sum;
@@ -2055,6 +2071,8 @@ MESHFIX__PRIVATE void meshfix__add_pair(meshfix__pair *pairs, size_t *count, con
     p->c = c;
     p->length = length;
 }
+
+#define MESHFIX__NEAREST_CANDIDATES 128
 
 typedef struct meshfix__grid {
     double cell;
@@ -2191,7 +2209,9 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
     if (n != 0) {
         average /= n;
         grid.cell = reach > average ? reach : average;
-        grid.cell = grid.cell > longest_edge / 16 ? grid.cell : longest_edge / 16;
+        /* a cell at least a quarter of the longest edge: no edge's box
+           covers more than 5 x 5 x 5 cells */
+        grid.cell = grid.cell > longest_edge / 4 ? grid.cell : longest_edge / 4;
         while (buckets < 2 * (size_t)n)
             buckets *= 2;
         grid.mask = buckets - 1;
@@ -2208,26 +2228,39 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
         meshfix__grid_pass(&grid, segments, n, 1); /* start[b] now ends bucket b */
     }
     for (i = 0; i < n; ++i) {
-        double lo[3], hi[3], x, y, z, best = reach, length;
-        unsigned int best_id = MESHFIX__NONE;
+        double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = reach, length;
+        unsigned int best_id = MESHFIX__NONE, looked = 0;
+        int ring;
         meshfix__segment_cells(&grid, &segments[i], reach, lo, hi);
-        for (x = lo[0]; x <= hi[0]; ++x)
-            for (y = lo[1]; y <= hi[1]; ++y)
-                for (z = lo[2]; z <= hi[2]; ++z) {
-                    size_t bucket = meshfix__grid_bucket(&grid, x, y, z), j;
-                    for (j = bucket == 0 ? 0 : grid.start[bucket - 1]; j < grid.start[bucket]; ++j) {
-                        unsigned int f = grid.items[j];
-                        double d;
-                        if (segments[f].patch == segments[i].patch)
+        meshfix__segment_cells(&grid, &segments[i], 0.0, inner_lo, inner_hi);
+        /* the cells the edge touches first, then the margin around them, and
+           at most MESHFIX__NEAREST_CANDIDATES edges in all: where thousands
+           of boundary edges crowd one place (a huge fan, a soup of large
+           triangles) the search stays linear, and what it drops is far */
+        for (ring = 0; ring < 2; ++ring)
+            for (x = lo[0]; x <= hi[0]; ++x)
+                for (y = lo[1]; y <= hi[1]; ++y)
+                    for (z = lo[2]; z <= hi[2]; ++z) {
+                        size_t bucket, j;
+                        int inner = x >= inner_lo[0] && x <= inner_hi[0] && y >= inner_lo[1] && y <= inner_hi[1] &&
+                                    z >= inner_lo[2] && z <= inner_hi[2];
+                        if (inner != (ring == 0))
                             continue;
-                        d = meshfix__segment_distance(&segments[i], &segments[f]);
-                        if (d < best || (d == best && (best_id == MESHFIX__NONE ||
-                                                       meshfix__segment_before(&segments[f], &segments[best_id])))) {
-                            best = d;
-                            best_id = f;
+                        bucket = meshfix__grid_bucket(&grid, x, y, z);
+                        for (j = bucket == 0 ? 0 : grid.start[bucket - 1];
+                             j < grid.start[bucket] && looked < MESHFIX__NEAREST_CANDIDATES; ++j, ++looked) {
+                            unsigned int f = grid.items[j];
+                            double d;
+                            if (segments[f].patch == segments[i].patch)
+                                continue;
+                            d = meshfix__segment_distance(&segments[i], &segments[f]);
+                            if (d < best || (d == best && (best_id == MESHFIX__NONE ||
+                                                           meshfix__segment_before(&segments[f], &segments[best_id])))) {
+                                best = d;
+                                best_id = f;
+                            }
                         }
                     }
-                }
         if (best_id == MESHFIX__NONE)
             continue;
         length = MESHFIX_SQRT((segments[i].q[0] - segments[i].p[0]) * (segments[i].q[0] - segments[i].p[0]) +

@@ -25,8 +25,8 @@ check() { # name, command...
     fi
 }
 
-suite() { # name, binary: adds the binary's own "N passed, N failed" line
-    local name=$1 log="$out/$(basename "$2").log"
+suite() { # name, command...: adds the command's own "N passed, N failed" line
+    local name=$1 log="$out/$(echo "$name" | tr -c 'A-Za-z0-9' _).log"
     shift
     echo "== $name"
     "$@" 2>&1 | tee "$log" | grep -v '^ok ' || true
@@ -58,7 +58,19 @@ suite "SDF policy on the six shapes" build/test_sdf
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_sdf_asan
 suite "visibility, nesting, weld, rays" build/test_visibility
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_visibility_asan
+suite "hostile input, allocation failure, adversarial sizes" build/test_hostile
+MESHFIX_ADVERSARIAL_N=20000 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_hostile_asan
 suite "OpenMesh as oracle" build/test_openmesh
+if command -v valgrind >/dev/null 2>&1; then
+    # memcheck: any error or leak fails the run (exit code 99)
+    VG="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect"
+    for t in test_meshfix test_sdf test_visibility test_hostile; do
+        MESHFIX_ADVERSARIAL_N=5000 suite "valgrind memcheck: $t" $VG build/$t
+    done
+else
+    echo "FAIL valgrind is not installed (bash .ci/run installs it)"
+    failed=$((failed + 1))
+fi
 echo "== command-line tool"
 check "meshfix CLI repairs the demo mesh" sh -c "build/demo_mesh $out/demo.obj >/dev/null && build/meshfix --quiet $out/demo.obj $out/fixed.ply && build/meshfix --inspect $out/fixed.ply | grep -q 'inconsistent 0' && build/meshfix --inspect $out/fixed.ply | grep -q 'inside-out 0'"
 check "meshfix CLI: one-line error, exit 1 on a bad file" sh -c "printf 'OFF\n999999999 1 0\n' > $out/bad.off; build/meshfix $out/bad.off $out/x.obj 2>$out/err.txt; test \$? -eq 1 && test \$(wc -l < $out/err.txt) -eq 1"

@@ -1,0 +1,531 @@
+/* Hostile input: the bad-input matrix, allocation failure at every
+   allocation a call makes, and adversarial meshes at sizes where anything
+   quadratic would not finish. Every refusal must leave every buffer the
+   caller passed byte for byte as it was. Prints "N passed, N failed". */
+#undef NDEBUG
+#define MESHFIX_IMPLEMENTATION
+#include "../meshfix.h"
+#define MESHIO_IMPLEMENTATION
+#include "../examples/meshio.h"
+#define MESHGEN_IMPLEMENTATION
+#include "../examples/meshgen.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static int failures;
+
+#define CHECK_EQ(a, b)                                                                                  \
+    do {                                                                                                \
+        unsigned long long va_ = (unsigned long long)(a), vb_ = (unsigned long long)(b);                \
+        if (va_ != vb_) {                                                                               \
+            printf("    %s:%d: %s == %llu, expected %s == %llu\n", __FILE__, __LINE__, #a, va_, #b, vb_); \
+            failures++;                                                                                 \
+        }                                                                                               \
+    } while (0)
+#define CHECK(cond)                                                                                     \
+    do {                                                                                                \
+        if (!(cond)) {                                                                                  \
+            printf("    %s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);                         \
+            failures++;                                                                                 \
+        }                                                                                               \
+    } while (0)
+
+static float cheap_sdf(const float p[3], void *user)
+{
+    (void)user;
+    return sqrtf(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 1.0f;
+}
+
+/* every policy, SDF with a cheap function */
+#define POLICIES 7
+static meshfix_options policy_options(int i)
+{
+    static const meshfix_policy policies[POLICIES] = {MESHFIX_POLICY_AUTO,       MESHFIX_POLICY_SEED,
+                                                      MESHFIX_POLICY_MAJORITY,   MESHFIX_POLICY_OUTWARD,
+                                                      MESHFIX_POLICY_VISIBILITY, MESHFIX_POLICY_UP,
+                                                      MESHFIX_POLICY_SDF};
+    meshfix_options o;
+    memset(&o, 0, sizeof(o));
+    o.policy = policies[i];
+    o.sdf = cheap_sdf;
+    o.visibility_rays = 4096;
+    return o;
+}
+
+/* The caller's buffers around one call, to compare after it. */
+/* Counts this large are claims the library must refuse before reading:
+   the guarded buffers hold what really exists. */
+#define REAL_COUNT(n) ((n) <= 10000000u ? (n) : 12u)
+
+typedef struct guarded {
+    unsigned int *indices, *indices_copy, *destination, *destination_copy, *patch_ids, *patch_copy;
+    unsigned char *flipped, *flipped_copy;
+    float *confidence, *confidence_copy;
+    meshfix_component components[4], components_copy[4];
+    meshfix_report report, report_copy;
+    size_t index_count;
+} guarded;
+
+static void guard(guarded *g, const unsigned int *indices, size_t index_count)
+{
+    size_t n = REAL_COUNT(index_count) + 3, t = n / 3 + 1;
+    memset(g, 0, sizeof(*g));
+    g->index_count = index_count;
+    g->indices = (unsigned int *)calloc(n, sizeof(unsigned int));
+    g->indices_copy = (unsigned int *)calloc(n, sizeof(unsigned int));
+    g->destination = (unsigned int *)calloc(n, sizeof(unsigned int));
+    g->destination_copy = (unsigned int *)calloc(n, sizeof(unsigned int));
+    g->patch_ids = (unsigned int *)calloc(t, sizeof(unsigned int));
+    g->patch_copy = (unsigned int *)calloc(t, sizeof(unsigned int));
+    g->flipped = (unsigned char *)calloc(t, 1);
+    g->flipped_copy = (unsigned char *)calloc(t, 1);
+    g->confidence = (float *)calloc(t, sizeof(float));
+    g->confidence_copy = (float *)calloc(t, sizeof(float));
+    if (indices != NULL)
+        memcpy(g->indices, indices, REAL_COUNT(index_count) * sizeof(unsigned int));
+    memset(g->destination, 0xA5, n * sizeof(unsigned int));
+    memset(g->patch_ids, 0x5A, t * sizeof(unsigned int));
+    memset(g->flipped, 0x77, t);
+    memset(g->confidence, 0x33, t * sizeof(float));
+    memset(g->components, 0x44, sizeof(g->components));
+    memset(&g->report, 0x66, sizeof(g->report));
+    memcpy(g->indices_copy, g->indices, n * sizeof(unsigned int));
+    memcpy(g->destination_copy, g->destination, n * sizeof(unsigned int));
+    memcpy(g->patch_copy, g->patch_ids, t * sizeof(unsigned int));
+    memcpy(g->flipped_copy, g->flipped, t);
+    memcpy(g->confidence_copy, g->confidence, t * sizeof(float));
+    memcpy(g->components_copy, g->components, sizeof(g->components));
+    g->report_copy = g->report;
+}
+
+static void attach(guarded *g, meshfix_options *o)
+{
+    o->flipped = g->flipped;
+    o->patch_ids = g->patch_ids;
+    o->patch_confidence = g->confidence;
+    o->patch_confidence_capacity = REAL_COUNT(g->index_count) / 3 + 1;
+    o->components = g->components;
+    o->components_capacity = 4;
+}
+
+static int untouched(const guarded *g)
+{
+    size_t n = REAL_COUNT(g->index_count) + 3, t = n / 3 + 1;
+    return memcmp(g->indices, g->indices_copy, n * sizeof(unsigned int)) == 0 &&
+           memcmp(g->destination, g->destination_copy, n * sizeof(unsigned int)) == 0 &&
+           memcmp(g->patch_ids, g->patch_copy, t * sizeof(unsigned int)) == 0 &&
+           memcmp(g->flipped, g->flipped_copy, t) == 0 &&
+           memcmp(g->confidence, g->confidence_copy, t * sizeof(float)) == 0 &&
+           memcmp(g->components, g->components_copy, sizeof(g->components)) == 0 &&
+           memcmp(&g->report, &g->report_copy, sizeof(g->report)) == 0;
+}
+
+static void unguard(guarded *g)
+{
+    free(g->indices), free(g->indices_copy), free(g->destination), free(g->destination_copy);
+    free(g->patch_ids), free(g->patch_copy), free(g->flipped), free(g->flipped_copy);
+    free(g->confidence), free(g->confidence_copy);
+}
+
+/* One refused call under every policy, in place and out of place: the
+   status expected, nothing written. */
+static void expect_refusal(const char *what, const unsigned int *indices, size_t index_count, const float *positions,
+                           size_t vertex_count, size_t stride, meshfix_result expected)
+{
+    int p;
+    for (p = 0; p < POLICIES; ++p) {
+        guarded g;
+        meshfix_options o = policy_options(p);
+        meshfix_result r;
+        guard(&g, indices, index_count);
+        attach(&g, &o);
+        r = meshfix_orient(g.destination, indices != NULL ? g.indices : NULL, index_count, positions, vertex_count,
+                           stride, &o, &g.report);
+        if (r != expected)
+            printf("    %s, policy %d: %s\n", what, (int)o.policy, meshfix_result_string(r));
+        CHECK_EQ(r, expected);
+        CHECK(untouched(&g));
+        r = meshfix_orient(indices != NULL ? g.indices : NULL, indices != NULL ? g.indices : NULL, index_count,
+                           positions, vertex_count, stride, &o, &g.report);
+        CHECK_EQ(r, expected);
+        CHECK(untouched(&g));
+        r = meshfix_inspect_ex(indices != NULL ? g.indices : NULL, index_count, positions, vertex_count, stride, &o,
+                               &g.report);
+        if (expected != MESHFIX_ERROR_POSITIONS_REQUIRED && expected != MESHFIX_ERROR_INVALID_ARGUMENT)
+            CHECK_EQ(r, expected);
+        if (r != MESHFIX_OK)
+            CHECK(untouched(&g));
+        unguard(&g);
+    }
+}
+
+static const float tetra_p[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+static const unsigned int tetra_i[] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+
+static void test_matrix_refusals(void)
+{
+    unsigned int bad[12];
+    float flat[12];
+    memcpy(bad, tetra_i, sizeof(bad));
+    bad[4] = 4;
+    expect_refusal("index == vertex_count", bad, 12, tetra_p, 4, 12, MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
+    bad[4] = 0xFFFFFFFFu;
+    expect_refusal("index 0xFFFFFFFF", bad, 12, tetra_p, 4, 12, MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
+    expect_refusal("11 indices", tetra_i, 11, tetra_p, 4, 12, MESHFIX_ERROR_NOT_TRIANGLES);
+    expect_refusal("1 index", tetra_i, 1, tetra_p, 4, 12, MESHFIX_ERROR_NOT_TRIANGLES);
+    expect_refusal("NULL indices", NULL, 12, tetra_p, 4, 12, MESHFIX_ERROR_INVALID_ARGUMENT);
+    expect_refusal("stride 0", tetra_i, 12, tetra_p, 4, 0, MESHFIX_ERROR_INVALID_ARGUMENT);
+    expect_refusal("stride 8", tetra_i, 12, tetra_p, 4, 8, MESHFIX_ERROR_INVALID_ARGUMENT);
+    expect_refusal("stride 13", tetra_i, 12, tetra_p, 4, 13, MESHFIX_ERROR_INVALID_ARGUMENT);
+    expect_refusal("no vertices", tetra_i, 12, tetra_p, 0, 12, MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
+    expect_refusal("index_count over 2^31", tetra_i, (size_t)0x80000001u, tetra_p, 4, 12, MESHFIX_ERROR_TOO_LARGE);
+    expect_refusal("index_count near SIZE_MAX", tetra_i, ((size_t)-1) / 3 * 3, tetra_p, 4, 12, MESHFIX_ERROR_TOO_LARGE);
+    if (sizeof(size_t) > 4) {
+        size_t huge = (size_t)1 << 33; /* over 2^32 vertices cannot be indexed */
+        expect_refusal("vertex_count over 2^32", tetra_i, 12, tetra_p, huge, 12, MESHFIX_ERROR_TOO_LARGE);
+        expect_refusal("vertex_count * stride overflows", tetra_i, 12, tetra_p, 0xFFFFFFFFu, ((size_t)-1) / 8 / 4 * 4,
+                       MESHFIX_ERROR_TOO_LARGE);
+    }
+    CHECK_EQ(meshfix_scratch_size((size_t)1 << 40, 12), sizeof(size_t) > 4 ? 0 : 0);
+    CHECK_EQ(meshfix_scratch_size(4, ((size_t)-1) / 3 * 3), 0);
+    /* positions needed */
+    {
+        guarded g;
+        meshfix_options o = policy_options(3);
+        guard(&g, tetra_i, 12);
+        attach(&g, &o);
+        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, NULL, 4, 0, &o, &g.report),
+                 MESHFIX_ERROR_POSITIONS_REQUIRED);
+        CHECK(untouched(&g));
+        o = policy_options(6);
+        o.sdf = NULL;
+        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report),
+                 MESHFIX_ERROR_INVALID_ARGUMENT);
+        o = policy_options(0);
+        o.allocator.alloc_fn = (void *(*)(size_t, void *))0x1; /* alloc without free: refused before use */
+        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report),
+                 MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK(untouched(&g));
+        unguard(&g);
+    }
+    /* weld refusals */
+    {
+        unsigned int remap[4] = {9, 9, 9, 9};
+        memcpy(flat, tetra_p, sizeof(flat));
+        flat[5] = INFINITY;
+        CHECK_EQ(meshfix_weld(remap, flat, 4, 12, 0.0f, NULL, NULL), MESHFIX_ERROR_NON_FINITE);
+        CHECK_EQ(meshfix_weld(NULL, flat, 4, 12, 0.0f, NULL, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK_EQ(meshfix_weld(remap, NULL, 4, 12, 0.0f, NULL, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK_EQ(meshfix_weld(remap, flat, 4, 12, NAN, NULL, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK_EQ(meshfix_weld(remap, flat, ((size_t)-1) / 2, 12, 0.0f, NULL, NULL), MESHFIX_ERROR_TOO_LARGE);
+        CHECK(remap[0] == 9 && remap[3] == 9);
+    }
+}
+
+/* Accepted, odd inputs: a documented status (OK) and a sound result under
+   every policy. */
+static void expect_repair(const char *what, const unsigned int *indices, size_t index_count, const float *positions,
+                          size_t vertex_count, meshfix_report *last)
+{
+    int p;
+    for (p = 0; p < POLICIES; ++p) {
+        meshfix_options o = policy_options(p);
+        meshfix_report r, again;
+        unsigned int *out = (unsigned int *)malloc(index_count * sizeof(unsigned int) + 4);
+        meshfix_result result =
+            meshfix_orient(out, indices, index_count, positions, vertex_count, 12, &o, &r);
+        if (result != MESHFIX_OK)
+            printf("    %s, policy %d: %s\n", what, p, meshfix_result_string(result));
+        CHECK_EQ(result, MESHFIX_OK);
+        if (result == MESHFIX_OK && o.policy != MESHFIX_POLICY_SDF) {
+            /* a second pass changes nothing */
+            CHECK_EQ(meshfix_orient(out, out, index_count, positions, vertex_count, 12, &o, &again), MESHFIX_OK);
+            CHECK_EQ(again.triangles_flipped, 0);
+        }
+        *last = r;
+        free(out);
+    }
+}
+
+static void test_matrix_accepted(void)
+{
+    meshfix_report r;
+    float p[12], *many;
+    unsigned int *idx;
+    size_t t, k;
+    /* zero triangles, NULL everywhere */
+    CHECK_EQ(meshfix_orient(NULL, NULL, 0, NULL, 0, 0, NULL, &r), MESHFIX_OK);
+    CHECK_EQ(meshfix_weld(NULL, NULL, 0, 0, 0.0f, NULL, NULL), MESHFIX_OK);
+    /* NaN and Inf positions: counted, weigh nothing, topology still repaired */
+    memcpy(p, tetra_p, sizeof(p));
+    p[3] = NAN, p[7] = INFINITY, p[11] = -INFINITY;
+    expect_repair("NaN and Inf", tetra_i, 12, p, 4, &r);
+    CHECK_EQ(r.vertices_non_finite, 3);
+    CHECK_EQ(r.edges_inconsistent, 0);
+    /* all degenerate: reported, nothing flipped */
+    {
+        static const unsigned int degenerate[] = {0, 0, 1, 1, 2, 2, 3, 3, 3, 0, 1, 0};
+        expect_repair("all degenerate", degenerate, 12, tetra_p, 4, &r);
+        CHECK_EQ(r.triangles_degenerate, 4);
+        CHECK_EQ(r.triangles_flipped, 0);
+        CHECK_EQ(r.patches, 0);
+    }
+    /* duplicated triangles */
+    {
+        static const unsigned int dup[] = {0, 1, 2, 0, 1, 2, 2, 1, 0, 1, 2, 0, 0, 1, 3};
+        expect_repair("duplicates", dup, 15, tetra_p, 4, &r);
+        CHECK_EQ(r.triangles_duplicate, 3);
+    }
+    /* an edge shared by k = 3 .. 64 triangles */
+    for (k = 3; k <= 64; k = k < 8 ? k + 1 : k * 2) {
+        many = (float *)malloc(3 * (k + 2) * sizeof(float));
+        idx = (unsigned int *)malloc(3 * k * sizeof(unsigned int));
+        many[0] = 0, many[1] = 0, many[2] = 0, many[3] = 1, many[4] = 0, many[5] = 0;
+        for (t = 0; t < k; ++t) {
+            double a = 6.283185307 * (double)t / (double)k;
+            many[3 * (t + 2)] = 0.5f, many[3 * (t + 2) + 1] = (float)cos(a), many[3 * (t + 2) + 2] = (float)sin(a);
+            idx[3 * t] = 0, idx[3 * t + 1] = 1, idx[3 * t + 2] = (unsigned int)(t + 2);
+        }
+        expect_repair("edge shared by k", idx, 3 * k, many, k + 2, &r);
+        CHECK_EQ(r.edges_non_manifold, 1);
+        CHECK_EQ(r.patches, k);
+        CHECK_EQ(r.components, 1);
+        free(many);
+        free(idx);
+    }
+    /* NULL positions with the topology policies; huge vertex_count, few used */
+    CHECK_EQ(meshfix_orient(NULL, tetra_i, 12, NULL, 0xFFFFFFFFu, 0, NULL, &r), MESHFIX_OK);
+    CHECK_EQ(r.vertices_used, 4);
+    CHECK_EQ(meshfix_inspect(tetra_i, 12, NULL, 4, 0, &r), MESHFIX_OK);
+}
+
+/* ---- allocation failure at every allocation ---- */
+
+typedef struct failing_allocator {
+    size_t calls, frees, fail_at, live;
+} failing_allocator;
+
+static void *failing_alloc(size_t size, void *user)
+{
+    failing_allocator *a = (failing_allocator *)user;
+    if (++a->calls == a->fail_at)
+        return NULL;
+    a->live++;
+    return malloc(size);
+}
+
+static void failing_free(void *p, void *user)
+{
+    failing_allocator *a = (failing_allocator *)user;
+    a->frees++;
+    a->live--;
+    free(p);
+}
+
+static void fail_every_allocation(const char *what, const unsigned int *indices, size_t index_count,
+                                  const float *positions, size_t vertex_count)
+{
+    int p;
+    for (p = 0; p < POLICIES; ++p) {
+        failing_allocator a;
+        meshfix_options o = policy_options(p);
+        size_t total, n;
+        guarded g;
+        memset(&a, 0, sizeof(a));
+        o.allocator.alloc_fn = failing_alloc;
+        o.allocator.free_fn = failing_free;
+        o.allocator.user_data = &a;
+        guard(&g, indices, index_count);
+        attach(&g, &o);
+        CHECK_EQ(meshfix_orient(g.destination, g.indices, index_count, positions, vertex_count, 12, &o, &g.report),
+                 MESHFIX_OK);
+        CHECK_EQ(a.live, 0);
+        total = a.calls;
+        unguard(&g);
+        for (n = 1; n <= total; ++n) {
+            meshfix_result r;
+            guard(&g, indices, index_count);
+            attach(&g, &o);
+            memset(&a, 0, sizeof(a));
+            a.fail_at = n;
+            r = meshfix_orient(g.destination, g.indices, index_count, positions, vertex_count, 12, &o, &g.report);
+            if (r != MESHFIX_ERROR_OUT_OF_MEMORY || a.live != 0 || !untouched(&g))
+                printf("    %s, policy %d, allocation %lu of %lu: %s, %lu live\n", what, p, (unsigned long)n,
+                       (unsigned long)total, meshfix_result_string(r), (unsigned long)a.live);
+            CHECK_EQ(r, MESHFIX_ERROR_OUT_OF_MEMORY);
+            CHECK_EQ(a.live, 0);
+            CHECK(untouched(&g));
+            unguard(&g);
+        }
+    }
+    {
+        /* the weld: two allocations */
+        failing_allocator a;
+        meshfix_options o;
+        unsigned int *remap = (unsigned int *)malloc(vertex_count * sizeof(unsigned int));
+        size_t n;
+        memset(&o, 0, sizeof(o));
+        o.allocator.alloc_fn = failing_alloc;
+        o.allocator.free_fn = failing_free;
+        o.allocator.user_data = &a;
+        for (n = 1; n <= 2; ++n) {
+            memset(&a, 0, sizeof(a));
+            memset(remap, 0x3C, vertex_count * sizeof(unsigned int));
+            a.fail_at = n;
+            CHECK_EQ(meshfix_weld(remap, positions, vertex_count, 12, 1e-4f, &o, NULL), MESHFIX_ERROR_OUT_OF_MEMORY);
+            CHECK_EQ(a.live, 0);
+            CHECK(remap[0] == 0x3C3C3C3Cu);
+        }
+        free(remap);
+    }
+}
+
+static void test_allocation_failure(void)
+{
+    mio_mesh g, t;
+    /* two shells and open patches, so the ray-casting stages allocate too */
+    CHECK(gen_sphere(&g, 10, 14, 0, 0, 0, 2));
+    CHECK(gen_sphere(&t, 8, 10, 0, 0, 0, 1)); /* a cavity */
+    CHECK(gen_append(&g, &t));
+    mio_free(&t);
+    CHECK(gen_grid(&t, 6, 6));
+    CHECK(gen_append(&g, &t));
+    mio_free(&t);
+    gen_flip_random(&g, 0.3, 1, NULL);
+    fail_every_allocation("spheres and a sheet", g.indices, g.index_count, g.positions, g.vertex_count);
+    mio_free(&g);
+}
+
+/* ---- adversarial shapes at sizes where quadratic work would not finish ---- */
+
+/* n = 200000, or MESHFIX_ADVERSARIAL_N (the sanitizer and valgrind runs
+   use less): at this size anything quadratic would take hours, so the
+   suite finishing is the check; make bench measures the time. */
+static void test_adversarial(void)
+{
+    const size_t n = getenv("MESHFIX_ADVERSARIAL_N") ? (size_t)strtoul(getenv("MESHFIX_ADVERSARIAL_N"), NULL, 10) : 200000;
+    float *p = (float *)malloc(3 * (n + 2) * sizeof(float));
+    unsigned int *idx = (unsigned int *)malloc(3 * n * sizeof(unsigned int));
+    meshfix_report r;
+    meshfix_options o;
+    size_t t;
+    int policy;
+    unsigned long long seed = 5;
+    memset(&o, 0, sizeof(o));
+    o.visibility_rays = 16384;
+    /* one vertex shared by n triangles: a disk fan, half of it reversed */
+    p[0] = p[1] = p[2] = 0;
+    for (t = 0; t < n; ++t) {
+        double a = 6.283185307 * (double)t / (double)n;
+        p[3 * (t + 1)] = (float)cos(a), p[3 * (t + 1) + 1] = (float)sin(a), p[3 * (t + 1) + 2] = 0;
+        idx[3 * t] = 0, idx[3 * t + 1] = (unsigned int)(t + 1), idx[3 * t + 2] = (unsigned int)((t + 1) % n + 1);
+        if (t % 2)
+            idx[3 * t + 1] = (unsigned int)((t + 1) % n + 1), idx[3 * t + 2] = (unsigned int)(t + 1);
+    }
+    for (policy = 0; policy < 2; ++policy) {
+        o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
+        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, n + 1, 12, &o, &r), MESHFIX_OK);
+        CHECK_EQ(r.edges_inconsistent, 0);
+        CHECK_EQ(r.patches, 1);
+    }
+    /* one edge shared by n triangles */
+    p[3] = 1, p[4] = 0, p[5] = 0;
+    for (t = 0; t < n; ++t) {
+        idx[3 * t] = 0, idx[3 * t + 1] = 1, idx[3 * t + 2] = (unsigned int)(t % n + 2 > n ? 2 : t + 2);
+        p[3 * ((t % n) + 2) - 3 + 3] = 0.5f;
+    }
+    for (t = 2; t < n + 2; ++t)
+        p[3 * t] = 0.5f, p[3 * t + 1] = (float)gen_uniform(&seed), p[3 * t + 2] = (float)gen_uniform(&seed);
+    for (t = 0; t < n; ++t)
+        idx[3 * t + 2] = (unsigned int)(t + 2 <= n + 1 ? t + 2 : 2);
+    for (policy = 0; policy < 2; ++policy) {
+        o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
+        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, n + 2, 12, &o, &r), MESHFIX_OK);
+        CHECK_EQ(r.edges_non_manifold, 1);
+        CHECK_EQ(r.patches, n);
+    }
+    /* n coincident triangles */
+    for (t = 0; t < n; ++t)
+        idx[3 * t] = 0, idx[3 * t + 1] = t % 2 ? 1 : 2, idx[3 * t + 2] = t % 2 ? 2 : 1;
+    for (policy = 0; policy < 2; ++policy) {
+        o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
+        CHECK_EQ(meshfix_orient(NULL, idx, 3 * n, p, n + 2, 12, &o, &r), MESHFIX_OK);
+        CHECK_EQ(r.triangles_duplicate, n - 1);
+        CHECK_EQ(r.edges, 3);
+    }
+    /* a soup: every triangle its own patch, random positions */
+    for (t = 0; t < 3 * n; ++t)
+        idx[t] = (unsigned int)t;
+    free(p);
+    p = (float *)malloc(9 * n * sizeof(float));
+    for (t = 0; t < 9 * n; ++t)
+        p[t] = (float)gen_uniform(&seed);
+    for (policy = 0; policy < 2; ++policy) {
+        o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
+        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, 3 * n, 12, &o, &r), MESHFIX_OK);
+        CHECK_EQ(r.patches, n);
+    }
+    free(p);
+    free(idx);
+    /* many tiny closed shells: 5000 tetrahedra, nesting checks for each */
+    {
+        mio_mesh g;
+        size_t shells = 5000, s;
+        g.vertex_count = 4 * shells;
+        g.index_count = 12 * shells;
+        g.positions = (float *)malloc(3 * g.vertex_count * sizeof(float));
+        g.indices = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+        for (s = 0; s < shells; ++s) {
+            size_t k;
+            for (k = 0; k < 12; ++k)
+                g.positions[12 * s + k] = tetra_p[k] * 0.5f + (float)(k % 3 == 0 ? (double)(s % 100) : k % 3 == 1 ? (double)(s / 100) : 0.0);
+            for (k = 0; k < 12; ++k)
+                g.indices[12 * s + k] = tetra_i[k] + (unsigned int)(4 * s);
+        }
+        gen_flip_random(&g, 0.5, 3, NULL);
+        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r),
+                 MESHFIX_OK);
+        CHECK_EQ(r.patches_inside_out, 0);
+        CHECK_EQ(r.shells_inward, 0);
+        CHECK_EQ(r.edges_inconsistent, 0);
+        mio_free(&g);
+    }
+}
+
+typedef struct test_case {
+    const char *name;
+    void (*run)(void);
+} test_case;
+
+static const test_case tests[] = {
+    {"bad input refused under every policy, nothing written", test_matrix_refusals},
+    {"odd input accepted: NaN/Inf, degenerate, duplicates, edges of 3..64, empty", test_matrix_accepted},
+    {"allocation failure at every allocation: OOM, no leak, nothing written", test_allocation_failure},
+    {"adversarial: fan of n, n on one edge, n coincident, soup of n, 5000 shells", test_adversarial},
+};
+
+int main(void)
+{
+    size_t i, passed = 0, failed = 0;
+    for (i = 0; i < sizeof(tests) / sizeof(tests[0]); ++i) {
+        int before = failures;
+        clock_t start = clock();
+        tests[i].run();
+        if (getenv("MESHFIX_TIMES"))
+            printf("     (%.2f s)\n", (double)(clock() - start) / CLOCKS_PER_SEC);
+        if (failures == before) {
+            passed++;
+            printf("ok   %s\n", tests[i].name);
+        } else {
+            failed++;
+            printf("FAIL %s\n", tests[i].name);
+        }
+    }
+    printf("%lu passed, %lu failed\n", (unsigned long)passed, (unsigned long)failed);
+    return failed != 0;
+}
