@@ -73,7 +73,11 @@ bench: $(B)/bench
 clean:
 	rm -rf $(B)
 
+# libFuzzer targets for the library and the loaders; FUZZ_SECONDS each (default 60)
+fuzz:
+	bash tests/fuzz/run.sh
+
 sdf-demo: $(B)/sdf_demo
 	$(B)/sdf_demo $(B)/sdf_demo.obj
 
-.PHONY: all demo sdf-demo test bench clean
+.PHONY: all demo sdf-demo test bench fuzz clean

@@ -57,6 +57,7 @@
        meshfix_inspect       report topology and winding problems, never writes
        meshfix_inspect_ex    the same with options (allocator, per-component output)
        meshfix_check         one-line assertion for unit tests
+       meshfix_weld          merge vertices closer than a tolerance (soups, CAD)
        meshfix_scratch_size  bytes of scratch memory a call needs at most
        meshfix_result_string text of a result code
 
@@ -79,10 +80,21 @@
             MAJORITY  the side that flips less triangle area (or fewer
                       triangles without positions), so a patch with 90% of
                       its triangles wrong does not come out inside-out;
-            OUTWARD   closed patches get positive signed volume; open ones
-                      use MAJORITY. Each closed shell faces out on its own:
-                      a cavity shell inside another is also turned outward
-                      (nesting needs the ray caster, not in this version);
+            OUTWARD   closed shells get positive signed volume, except
+                      cavities: a shell that crosses no other surface and
+                      lies inside an odd number of them (rays from 32 of
+                      its points cross the rest an odd number of times, 3
+                      of 4 deciding, so an outer shell with gaps still
+                      counts) faces inward. Open patches use MAJORITY;
+            VISIBILITY Borodin, Zachmann, Klein: per patch, the share of
+                      random rays that escape the model from each side
+                      (a BVH with a watertight ray/triangle test), the
+                      coherence of close boundary edges of other patches,
+                      and a greedy merge into super-patches with the
+                      paper's rules; each super-patch to its more visible
+                      side. For soups, CAD exports with gaps, open sheets;
+            UP        each patch toward the side its area-weighted normal
+                      leans to along options.up (terrains, height fields);
             SDF       for meshes extracted from a signed distance function:
                       the area-weighted vote of the SDF gradient over the
                       patch's triangles; per triangle (sdf_mode), the plain
@@ -91,7 +103,8 @@
                       fail: triangles with no normal (zero area) and
                       triangles at sharp edges whose centroid gradient lies
                       in their plane (see tests/test_sdf.c);
-            AUTO      OUTWARD with positions, MAJORITY without.
+            AUTO      closed shells OUTWARD, everything else VISIBILITY;
+                      MAJORITY without positions.
        6. write: copy indices to destination and swap the last two indices
           of each flipped triangle.
        Time O(index_count + vertex_count) (a vertex of k edges costs
@@ -106,7 +119,9 @@
        takes 1.3x to 2x the time of the repair alone.
        References: the edge-map flood fill of the glTF winding auto-fix;
        P. Borodin, G. Zachmann, R. Klein, "Consistent Normal Orientation for
-       Polygonal Meshes" (patches as the unit of orientation).
+       Polygonal Meshes" (patches, coherence, visibility, greedy merge);
+       S. Woop, C. Benthin, I. Wald, "Watertight Ray/Triangle Intersection"
+       (JCGT 2013); T. Ize, "Robust BVH Ray Traversal" (JCGT 2013).
 
    DETERMINISM & THREAD SAFETY
    The output depends only on the inputs and options: counting sorts with
@@ -123,16 +138,22 @@
 
    LIMITATIONS / DOES NOT
    - weld vertices: triangles connect only through shared indices;
-   - orient across T-junctions, gaps or non-manifold edges (each patch is
-     decided on its own there);
+   - connect patches across T-junctions or gaps topologically (VISIBILITY
+     relates them by the distance of their boundary edges instead);
    - fill holes, remove degenerate or duplicate triangles, or change the
      triangle order or count;
-   - detect nested shells (cavities) yet: OUTWARD faces every closed shell out.
+   - let caller scratch cover the ray-casting policies: VISIBILITY, and
+     OUTWARD / AUTO with more than one patch, allocate their BVH and ray
+     data through the allocator (about 150 bytes per triangle more);
+   - promise exact answers on pathological geometry: a ray that visits
+     more than 1024 BVH nodes counts as blocked, and a coherence query
+     looks at 128 nearby edges at most, so that cost stays linear;
    - index_count is limited to 2^31 - 1.
 
    VERSION HISTORY
        0.1.0  first release: inspect, flood fill with seed / majority /
-              outward / auto / SDF policies, check, scratch-size query.
+              outward / auto / SDF / visibility / up policies, nested
+              shells, weld, check, scratch-size query.
 */
 #ifndef MESHFIX_H
 #define MESHFIX_H
@@ -1375,35 +1396,48 @@ MESHFIX__PRIVATE float meshfix__box_area(const float low[3], const float high[3]
     return x < 0 ? 0.0f : 2.0f * (x * y + y * z + z * x);
 }
 
-MESHFIX__PRIVATE float meshfix__centroid(const float *corners, int axis)
+/* In double: three floats near 3e38 would overflow to infinity in float. */
+MESHFIX__PRIVATE double meshfix__centroid(const float *corners, int axis)
 {
-    return (corners[axis] + corners[3 + axis] + corners[6 + axis]) * (1.0f / 3.0f);
+    return ((double)corners[axis] + corners[3 + axis] + corners[6 + axis]) / 3.0;
 }
 
 #define MESHFIX__BINS 12
 #define MESHFIX__LEAF 4
 
+/* The bin of a centroid, clamped before the conversion: a value that is
+   not a number (found by fuzzing, from coordinates near FLT_MAX) lands in
+   bin 0 instead of being undefined behaviour. */
+MESHFIX__PRIVATE unsigned int meshfix__bin(double centroid, double low, double scale)
+{
+    double x = (centroid - low) * scale;
+    if (!(x >= 0.0))
+        return 0;
+    return x >= (double)(MESHFIX__BINS - 1) ? MESHFIX__BINS - 1 : (unsigned int)x;
+}
+
 /* Splits slots [first, first + count) at the best of 12 centroid bins
    along the widest axis; returns the size of the left part, 0 for a leaf. */
 MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first, unsigned int count)
 {
-    float clow[3] = {1e30f, 1e30f, 1e30f}, chigh[3] = {-1e30f, -1e30f, -1e30f}, scale, best_cost;
+    double clow[3] = {1e300, 1e300, 1e300}, chigh[3] = {-1e300, -1e300, -1e300}, scale;
+    float best_cost;
     float bin_low[MESHFIX__BINS][3], bin_high[MESHFIX__BINS][3];
     unsigned int bin_count[MESHFIX__BINS], i, left = 0, best = 0, j;
     int axis = 0, k;
     if (count <= MESHFIX__LEAF)
         return 0;
-    for (i = first; i < first + count; ++i) {
-        float c[3];
-        for (k = 0; k < 3; ++k)
-            c[k] = meshfix__centroid(b->corners + 9 * (size_t)i, k);
-        meshfix__grow_box(clow, chigh, c);
-    }
+    for (i = first; i < first + count; ++i)
+        for (k = 0; k < 3; ++k) {
+            double c = meshfix__centroid(b->corners + 9 * (size_t)i, k);
+            clow[k] = c < clow[k] ? c : clow[k];
+            chigh[k] = c > chigh[k] ? c : chigh[k];
+        }
     for (k = 1; k < 3; ++k)
         axis = chigh[k] - clow[k] > chigh[axis] - clow[axis] ? k : axis;
     if (!(chigh[axis] > clow[axis]))
         return count / 2; /* all centroids in one point: halve by slot */
-    scale = (float)MESHFIX__BINS / (chigh[axis] - clow[axis]);
+    scale = (double)MESHFIX__BINS / (chigh[axis] - clow[axis]);
     for (j = 0; j < MESHFIX__BINS; ++j) {
         bin_count[j] = 0;
         for (k = 0; k < 3; ++k)
@@ -1411,8 +1445,7 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first
     }
     for (i = first; i < first + count; ++i) {
         const float *c = b->corners + 9 * (size_t)i;
-        unsigned int bin = (unsigned int)((meshfix__centroid(c, axis) - clow[axis]) * scale);
-        bin = bin >= MESHFIX__BINS ? MESHFIX__BINS - 1 : bin;
+        unsigned int bin = meshfix__bin(meshfix__centroid(c, axis), clow[axis], scale);
         bin_count[bin]++;
         meshfix__grow_box(bin_low[bin], bin_high[bin], c);
         meshfix__grow_box(bin_low[bin], bin_high[bin], c + 3);
@@ -1451,8 +1484,7 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first
         unsigned int lo = first, hi = first + count;
         while (lo < hi) {
             float *c = b->corners + 9 * (size_t)lo;
-            unsigned int bin = (unsigned int)((meshfix__centroid(c, axis) - clow[axis]) * scale);
-            bin = bin >= MESHFIX__BINS ? MESHFIX__BINS - 1 : bin;
+            unsigned int bin = meshfix__bin(meshfix__centroid(c, axis), clow[axis], scale);
             if (bin < best) {
                 lo++;
             } else {
@@ -2099,6 +2131,19 @@ MESHFIX__PRIVATE void meshfix__segment_cells(const meshfix__grid *grid, const me
     }
 }
 
+/* Cell ranges are walked with a double counter: past 2^52, ++x would not
+   move (found by fuzzing: an edge of a zero-area triangle far outside the
+   model). Such an edge, or one spanning many cells, neither enters the
+   grid nor searches it. */
+MESHFIX__PRIVATE int meshfix__cells_usable(const double lo[3], const double hi[3])
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (!(lo[k] > -1e12 && hi[k] < 1e12 && hi[k] - lo[k] <= 16.0))
+            return 0;
+    return 1;
+}
+
 /* Fills the grid: a counting sort of (bucket, segment) for every cell a
    segment's box touches. Pass 0 counts, pass 1 places. */
 MESHFIX__PRIVATE void meshfix__grid_pass(meshfix__grid *grid, const meshfix__segment *segments, unsigned int count,
@@ -2108,6 +2153,8 @@ MESHFIX__PRIVATE void meshfix__grid_pass(meshfix__grid *grid, const meshfix__seg
     for (i = 0; i < count; ++i) {
         double lo[3], hi[3], x, y, z;
         meshfix__segment_cells(grid, &segments[i], 0.0, lo, hi);
+        if (!meshfix__cells_usable(lo, hi))
+            continue;
         for (x = lo[0]; x <= hi[0]; ++x)
             for (y = lo[1]; y <= hi[1]; ++y)
                 for (z = lo[2]; z <= hi[2]; ++z) {
@@ -2233,6 +2280,8 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
         int ring;
         meshfix__segment_cells(&grid, &segments[i], reach, lo, hi);
         meshfix__segment_cells(&grid, &segments[i], 0.0, inner_lo, inner_hi);
+        if (!meshfix__cells_usable(lo, hi))
+            continue;
         /* the cells the edge touches first, then the margin around them, and
            at most MESHFIX__NEAREST_CANDIDATES edges in all: where thousands
            of boundary edges crowd one place (a huge fan, a soup of large

@@ -26,7 +26,9 @@ check() { # name, command...
 }
 
 suite() { # name, command...: adds the command's own "N passed, N failed" line
-    local name=$1 log="$out/$(echo "$name" | tr -c 'A-Za-z0-9' _).log"
+    local name=$1
+    local log
+    log="$out/$(echo "$name" | tr -c 'A-Za-z0-9' _).log"
     shift
     echo "== $name"
     "$@" 2>&1 | tee "$log" | grep -v '^ok ' || true
