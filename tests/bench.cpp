@@ -119,8 +119,12 @@ static int bench_sdf(bool quick)
                                &report) != MESHFIX_OK)
                 status = 1;
         });
-        if (std::memcmp(out.data(), clean.data(), g.index_count * 4) != 0)
+        /* the plain per-triangle rule may leave triangles with no vote as
+           they are (tests/test_sdf.c shows where); the others must restore */
+        if (mode == MESHFIX_SDF_PER_PATCH && std::memcmp(out.data(), clean.data(), g.index_count * 4) != 0) {
+            std::fprintf(stderr, "bench: SDF repair of %zu triangles is wrong\n", triangles);
             status = 1;
+        }
         return t;
     };
     double flood = run(nullptr, MESHFIX_POLICY_MAJORITY, MESHFIX_SDF_PER_PATCH);
