@@ -10,30 +10,12 @@
 #define MESHGEN_IMPLEMENTATION
 #include "../examples/meshgen.h"
 
+#include "check.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static int failures;
-
-#define CHECK_EQ(a, b)                                                                                  \
-    do {                                                                                                \
-        unsigned long long va_ = (unsigned long long)(a), vb_ = (unsigned long long)(b);                \
-        if (va_ != vb_) {                                                                               \
-            printf("    %s:%d: %s == %llu, expected %s == %llu\n", __FILE__, __LINE__, #a, va_, #b, vb_); \
-            failures++;                                                                                 \
-        }                                                                                               \
-    } while (0)
-#define CHECK(cond)                                                                                     \
-    do {                                                                                                \
-        if (!(cond)) {                                                                                  \
-            printf("    %s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);                         \
-            failures++;                                                                                 \
-        }                                                                                               \
-    } while (0)
 
 static float cheap_sdf(const float p[3], void *user)
 {
@@ -497,11 +479,6 @@ static void test_adversarial(void)
     }
 }
 
-typedef struct test_case {
-    const char *name;
-    void (*run)(void);
-} test_case;
-
 static const test_case tests[] = {
     {"bad input refused under every policy, nothing written", test_matrix_refusals},
     {"odd input accepted: NaN/Inf, degenerate, duplicates, edges of 3..64, empty", test_matrix_accepted},
@@ -511,21 +488,5 @@ static const test_case tests[] = {
 
 int main(void)
 {
-    size_t i, passed = 0, failed = 0;
-    for (i = 0; i < sizeof(tests) / sizeof(tests[0]); ++i) {
-        int before = failures;
-        clock_t start = clock();
-        tests[i].run();
-        if (getenv("MESHFIX_TIMES"))
-            printf("     (%.2f s)\n", (double)(clock() - start) / CLOCKS_PER_SEC);
-        if (failures == before) {
-            passed++;
-            printf("ok   %s\n", tests[i].name);
-        } else {
-            failed++;
-            printf("FAIL %s\n", tests[i].name);
-        }
-    }
-    printf("%lu passed, %lu failed\n", (unsigned long)passed, (unsigned long)failed);
-    return failed != 0;
+    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), NULL);
 }

@@ -9,30 +9,11 @@
 #define MESHGEN_IMPLEMENTATION
 #include "../examples/meshgen.h"
 
+#include "check.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int test_failures;
-
-#define CHECK(cond)                                                                      \
-    do {                                                                                 \
-        if (!(cond)) {                                                                   \
-            printf("    %s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);          \
-            test_failures++;                                                             \
-        }                                                                                \
-    } while (0)
-
-#define CHECK_EQ(a, b)                                                                   \
-    do {                                                                                 \
-        unsigned long long va_ = (unsigned long long)(a), vb_ = (unsigned long long)(b); \
-        if (va_ != vb_) {                                                                \
-            printf("    %s:%d: %s == %llu, expected %s == %llu\n", __FILE__, __LINE__, #a,  \
-                   va_, #b, vb_);                                                        \
-            test_failures++;                                                             \
-        }                                                                                \
-    } while (0)
 
 /* ---- helpers ---- */
 
@@ -775,7 +756,7 @@ static void test_real_models(void)
         snprintf(path, sizeof(path), "%s/%s", models_dir(), files[f]);
         if (!mio_load(path, &g, error, sizeof(error))) {
             printf("    cannot load %s: %s (install Debian's assimp-testmodels)\n", path, error);
-            test_failures++;
+            failures++;
             continue;
         }
         loaded++;
@@ -857,11 +838,6 @@ static void test_hostile_files(void)
 
 /* ---- runner ---- */
 
-typedef struct test_case {
-    const char *name;
-    void (*run)(void);
-} test_case;
-
 static const test_case tests[] = {
     {"quick start compiles and works", test_quick_start},
     {"tetrahedron", test_tetrahedron},
@@ -886,20 +862,5 @@ static const test_case tests[] = {
 
 int main(int argc, char **argv)
 {
-    size_t i, passed = 0, failed = 0;
-    for (i = 0; i < sizeof(tests) / sizeof(tests[0]); ++i) {
-        int before = test_failures;
-        if (argc > 1 && strstr(tests[i].name, argv[1]) == NULL)
-            continue;
-        tests[i].run();
-        if (test_failures == before) {
-            passed++;
-            printf("ok   %s\n", tests[i].name);
-        } else {
-            failed++;
-            printf("FAIL %s\n", tests[i].name);
-        }
-    }
-    printf("%lu passed, %lu failed\n", (unsigned long)passed, (unsigned long)failed);
-    return failed != 0;
+    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), argc > 1 ? argv[1] : NULL);
 }

@@ -11,28 +11,11 @@
 #define SDFMESH_IMPLEMENTATION
 #include "../examples/sdfmesh.h"
 
+#include "check.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int failures;
-
-#define CHECK_EQ(a, b)                                                                                  \
-    do {                                                                                                \
-        unsigned long long va_ = (unsigned long long)(a), vb_ = (unsigned long long)(b);                \
-        if (va_ != vb_) {                                                                               \
-            printf("    %s:%d: %s == %llu, expected %s == %llu\n", __FILE__, __LINE__, #a, va_, #b, vb_); \
-            failures++;                                                                                 \
-        }                                                                                               \
-    } while (0)
-#define CHECK(cond)                                                                                     \
-    do {                                                                                                \
-        if (!(cond)) {                                                                                  \
-            printf("    %s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);                         \
-            failures++;                                                                                 \
-        }                                                                                               \
-    } while (0)
 
 typedef struct shape {
     const char *name;
@@ -300,11 +283,6 @@ static void test_bad_sdf_and_arguments(void)
     mio_free(&m);
 }
 
-typedef struct test_case {
-    const char *name;
-    void (*run)(void);
-} test_case;
-
 static const test_case tests[] = {
     {"sphere: 10/50/90% flipped, per patch restores it", test_sphere},
     {"box", test_box},
@@ -319,18 +297,5 @@ static const test_case tests[] = {
 
 int main(void)
 {
-    size_t i, passed = 0, failed = 0;
-    for (i = 0; i < sizeof(tests) / sizeof(tests[0]); ++i) {
-        int before = failures;
-        tests[i].run();
-        if (failures == before) {
-            passed++;
-            printf("ok   %s\n", tests[i].name);
-        } else {
-            failed++;
-            printf("FAIL %s\n", tests[i].name);
-        }
-    }
-    printf("%lu passed, %lu failed\n", (unsigned long)passed, (unsigned long)failed);
-    return failed != 0;
+    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), NULL);
 }

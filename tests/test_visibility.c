@@ -8,28 +8,11 @@
 #define MESHGEN_IMPLEMENTATION
 #include "../examples/meshgen.h"
 
+#include "check.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int failures;
-
-#define CHECK_EQ(a, b)                                                                                  \
-    do {                                                                                                \
-        unsigned long long va_ = (unsigned long long)(a), vb_ = (unsigned long long)(b);                \
-        if (va_ != vb_) {                                                                               \
-            printf("    %s:%d: %s == %llu, expected %s == %llu\n", __FILE__, __LINE__, #a, va_, #b, vb_); \
-            failures++;                                                                                 \
-        }                                                                                               \
-    } while (0)
-#define CHECK(cond)                                                                                     \
-    do {                                                                                                \
-        if (!(cond)) {                                                                                  \
-            printf("    %s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);                         \
-            failures++;                                                                                 \
-        }                                                                                               \
-    } while (0)
 
 static const char *models_dir(void)
 {
@@ -762,11 +745,6 @@ static void test_watertight_rays(void)
     mio_free(&g);
 }
 
-typedef struct test_case {
-    const char *name;
-    void (*run)(void);
-} test_case;
-
 static const test_case tests[] = {
     {"generated closed models cut into unwelded patches with gaps", test_cut_generated},
     {"real closed models cut into unwelded patches with gaps", test_cut_real},
@@ -784,20 +762,5 @@ static const test_case tests[] = {
 
 int main(int argc, char **argv)
 {
-    size_t i, passed = 0, failed = 0;
-    for (i = 0; i < sizeof(tests) / sizeof(tests[0]); ++i) {
-        int before = failures;
-        if (argc > 1 && strstr(tests[i].name, argv[1]) == NULL)
-            continue;
-        tests[i].run();
-        if (failures == before) {
-            passed++;
-            printf("ok   %s\n", tests[i].name);
-        } else {
-            failed++;
-            printf("FAIL %s\n", tests[i].name);
-        }
-    }
-    printf("%lu passed, %lu failed\n", (unsigned long)passed, (unsigned long)failed);
-    return failed != 0;
+    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), argc > 1 ? argv[1] : NULL);
 }
