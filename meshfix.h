@@ -1239,6 +1239,19 @@ MESHFIX__PRIVATE int meshfix__sdf_vote(meshfix__mesh *m, unsigned int t, const d
 
 /* ===== >>orient ===== */
 
+/* Corners of t relative to origin, and its normal (b - a) x (c - a), twice
+   its area long. */
+MESHFIX__PRIVATE void meshfix__load_triangle(const meshfix__mesh *m, unsigned int t, const double origin[3],
+                                            double a[3], double b[3], double c[3], double n[3])
+{
+    meshfix__load_corner(m, m->indices[3 * t], origin, a);
+    meshfix__load_corner(m, m->indices[3 * t + 1], origin, b);
+    meshfix__load_corner(m, m->indices[3 * t + 2], origin, c);
+    n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+    n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+    n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
 MESHFIX__PRIVATE void meshfix__sum_patch(meshfix__mesh *m, unsigned int patch, meshfix__patch_sums *s)
 {
     unsigned int i, end = m->patch_start[patch + 1];
@@ -1256,14 +1269,8 @@ MESHFIX__PRIVATE void meshfix__sum_patch(meshfix__mesh *m, unsigned int patch, m
     meshfix__load_corner(m, m->indices[3 * m->queue[m->patch_start[patch]]], origin, origin);
     for (i = m->patch_start[patch]; i < end; ++i) {
         unsigned int t = m->queue[i];
-        const unsigned int *tri = m->indices + 3 * (size_t)t;
         double a[3], b[3], c[3], n[3], area, volume;
-        meshfix__load_corner(m, tri[0], origin, a);
-        meshfix__load_corner(m, tri[1], origin, b);
-        meshfix__load_corner(m, tri[2], origin, c);
-        n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
-        n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
-        n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        meshfix__load_triangle(m, t, origin, a, b, c, n);
         area = 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         /* a NaN or infinite coordinate leaves a NaN or infinite area: weight 0 */
         if (!(area > 0.0 && area - area == 0.0)) {
@@ -1369,6 +1376,17 @@ MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_allocator *a, size_t coun
     if (size != 0 && count > ((size_t)-1) / size)
         return NULL;
     return a->alloc_fn != NULL ? a->alloc_fn(count * size + 1, a->user_data) : MESHFIX_MALLOC(count * size + 1, a->user_data);
+}
+
+/* The caller's allocator, or the MESHFIX_MALLOC / MESHFIX_FREE defaults
+   (both NULL); 0 when alloc_fn comes without free_fn. */
+MESHFIX__PRIVATE int meshfix__pick_allocator(const meshfix_options *options, meshfix_allocator *allocator)
+{
+    MESHFIX_MEMSET(allocator, 0, sizeof(*allocator));
+    if (options == NULL || options->allocator.alloc_fn == NULL)
+        return 1;
+    *allocator = options->allocator;
+    return options->allocator.free_fn != NULL;
 }
 
 MESHFIX__PRIVATE void meshfix__release(const meshfix_allocator *a, void *p)
@@ -1834,36 +1852,26 @@ typedef struct meshfix__geometry {
     float t_min;
 } meshfix__geometry;
 
-MESHFIX__PRIVATE int meshfix__has_area(const meshfix__mesh *m, unsigned int t)
-{
-    double a[3], b[3], c[3], n[3], origin[3] = {0, 0, 0}, area;
-    if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
-        return 0;
-    meshfix__load_corner(m, m->indices[3 * t], origin, a);
-    meshfix__load_corner(m, m->indices[3 * t + 1], origin, b);
-    meshfix__load_corner(m, m->indices[3 * t + 2], origin, c);
-    n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
-    n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
-    n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    area = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    return area > 0.0 && area - area == 0.0;
-}
-
-/* Normal of t in its patch's consistent frame (its relative bit applied). */
+/* Normal of t in its patch's consistent frame (its relative bit applied);
+   *area is 0 when it is not finite. */
 MESHFIX__PRIVATE void meshfix__relative_normal(const meshfix__mesh *m, unsigned int t, double n[3], double *area)
 {
     double a[3], b[3], c[3], origin[3] = {0, 0, 0}, s;
-    meshfix__load_corner(m, m->indices[3 * t], origin, a);
-    meshfix__load_corner(m, m->indices[3 * t + 1], origin, b);
-    meshfix__load_corner(m, m->indices[3 * t + 2], origin, c);
-    n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
-    n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
-    n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    meshfix__load_triangle(m, t, origin, a, b, c, n);
     *area = 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (!(*area - *area == 0.0))
         *area = 0.0;
     s = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ? -1.0 : 1.0;
     n[0] *= s, n[1] *= s, n[2] *= s;
+}
+
+MESHFIX__PRIVATE int meshfix__has_area(const meshfix__mesh *m, unsigned int t)
+{
+    double n[3], area;
+    if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
+        return 0;
+    meshfix__relative_normal(m, t, n, &area);
+    return area > 0.0;
 }
 
 /* A random point of patch p, drawn by area, and the triangle it lies on. */
@@ -3170,12 +3178,8 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
         return MESHFIX_ERROR_TOO_LARGE;
 
     /* one block holds all scratch: the caller's, or a single allocation */
-    MESHFIX_MEMSET(&allocator, 0, sizeof(allocator));
-    if (options != NULL && options->allocator.alloc_fn != NULL) {
-        if (options->allocator.free_fn == NULL)
-            return MESHFIX_ERROR_INVALID_ARGUMENT;
-        allocator = options->allocator;
-    }
+    if (!meshfix__pick_allocator(options, &allocator))
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
     if (options != NULL && options->scratch != NULL) {
         if (options->scratch_size < plan.total)
             return MESHFIX_ERROR_SCRATCH_TOO_SMALL;
@@ -3300,12 +3304,8 @@ MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex
         if (!(meshfix__is_finite(p[0]) && meshfix__is_finite(p[1]) && meshfix__is_finite(p[2])))
             return MESHFIX_ERROR_NON_FINITE;
     }
-    MESHFIX_MEMSET(&allocator, 0, sizeof(allocator));
-    if (options != NULL && options->allocator.alloc_fn != NULL) {
-        if (options->allocator.free_fn == NULL)
-            return MESHFIX_ERROR_INVALID_ARGUMENT;
-        allocator = options->allocator;
-    }
+    if (!meshfix__pick_allocator(options, &allocator))
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
     while (size < 2 * vertex_count)
         size *= 2;
     MESHFIX_MEMSET(&w, 0, sizeof(w));
