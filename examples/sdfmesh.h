@@ -108,32 +108,54 @@ static unsigned int sdfmesh_edge_vertex(sdfmesh_state *s, unsigned i, unsigned j
     return *entry;
 }
 
-/* Adds triangle (x, y, z) facing along `out`. */
-static int sdfmesh_triangle(sdfmesh_state *s, unsigned x, unsigned y, unsigned z, const float out[3])
+/* Adds triangle (x, y, z) facing along `out`. Its facing is decided on
+   the triangle through the midpoints of the tetrahedron edges its vertices
+   lie on (edge ab is ab[0], ab[1]): the real vertices can meet where the
+   function is exactly zero at a corner, and a triangle with no area has no
+   facing of its own. Moving a vertex along its edge never turns the
+   triangle over, so both agree wherever the real one has an area. */
+static int sdfmesh_triangle(sdfmesh_state *s, const unsigned vertex[3], const unsigned edge[3][2], const float out[3])
 {
     mio_mesh *m = s->mesh;
-    const float *a = m->positions + 3 * (size_t)x, *b = m->positions + 3 * (size_t)y, *c = m->positions + 3 * (size_t)z;
-    float u[3], v[3], n[3];
-    int k;
-    if (x == SDFMESH_NONE || y == SDFMESH_NONE || z == SDFMESH_NONE ||
+    float mid[3][3], u[3], v[3], n[3];
+    int k, q;
+    if (vertex[0] == SDFMESH_NONE || vertex[1] == SDFMESH_NONE || vertex[2] == SDFMESH_NONE ||
         !sdfmesh_grow((void **)&m->indices, &s->index_capacity, m->index_count + 3, sizeof(unsigned int)))
         return 0;
+    for (q = 0; q < 3; ++q)
+        for (k = 0; k < 3; ++k)
+            mid[q][k] = 0.5f * (float)(((edge[q][0] >> k) & 1) + ((edge[q][1] >> k) & 1));
     for (k = 0; k < 3; ++k) {
-        u[k] = b[k] - a[k];
-        v[k] = c[k] - a[k];
+        u[k] = mid[1][k] - mid[0][k];
+        v[k] = mid[2][k] - mid[0][k];
     }
     n[0] = u[1] * v[2] - u[2] * v[1];
     n[1] = u[2] * v[0] - u[0] * v[2];
     n[2] = u[0] * v[1] - u[1] * v[0];
-    m->indices[m->index_count++] = x;
+    m->indices[m->index_count++] = vertex[0];
     if (n[0] * out[0] + n[1] * out[1] + n[2] * out[2] < 0) {
-        m->indices[m->index_count++] = z;
-        m->indices[m->index_count++] = y;
+        m->indices[m->index_count++] = vertex[2];
+        m->indices[m->index_count++] = vertex[1];
     } else {
-        m->indices[m->index_count++] = y;
-        m->indices[m->index_count++] = z;
+        m->indices[m->index_count++] = vertex[1];
+        m->indices[m->index_count++] = vertex[2];
     }
     return 1;
+}
+
+/* Adds the triangle across the tetrahedron edges a, b, c (pairs of corners). */
+static int sdfmesh_cut(sdfmesh_state *s, unsigned i, unsigned j, unsigned k, const unsigned a[2], const unsigned b[2],
+                       const unsigned c[2], const float out[3])
+{
+    const unsigned *ends[3];
+    unsigned edge[3][2], vertex[3], q;
+    ends[0] = a, ends[1] = b, ends[2] = c;
+    for (q = 0; q < 3; ++q) {
+        edge[q][0] = ends[q][0] < ends[q][1] ? ends[q][0] : ends[q][1];
+        edge[q][1] = ends[q][0] < ends[q][1] ? ends[q][1] : ends[q][0];
+        vertex[q] = sdfmesh_edge_vertex(s, i, j, k, edge[q][0], edge[q][1]);
+    }
+    return sdfmesh_triangle(s, vertex, (const unsigned(*)[2])edge, out);
 }
 
 static int sdfmesh_tetrahedron(sdfmesh_state *s, unsigned i, unsigned j, unsigned k, const unsigned corner[4])
@@ -157,18 +179,21 @@ static int sdfmesh_tetrahedron(sdfmesh_state *s, unsigned i, unsigned j, unsigne
         for (q = 0; q < ni; ++q)
             out[axis] -= (float)((inside[q] >> axis) & 1) / (float)ni;
     }
-#define SDFMESH_V(a, b) ((a) < (b) ? sdfmesh_edge_vertex(s, i, j, k, (a), (b)) : sdfmesh_edge_vertex(s, i, j, k, (b), (a)))
     if (ni == 1 || no == 1) {
         const unsigned *lone = ni == 1 ? inside : outside, *rest = ni == 1 ? outside : inside;
-        return sdfmesh_triangle(s, SDFMESH_V(lone[0], rest[0]), SDFMESH_V(lone[0], rest[1]),
-                                SDFMESH_V(lone[0], rest[2]), out);
+        unsigned e0[2], e1[2], e2[2];
+        e0[0] = e1[0] = e2[0] = lone[0];
+        e0[1] = rest[0], e1[1] = rest[1], e2[1] = rest[2];
+        return sdfmesh_cut(s, i, j, k, e0, e1, e2, out);
     }
     {
-        unsigned a = SDFMESH_V(inside[0], outside[0]), b = SDFMESH_V(inside[0], outside[1]);
-        unsigned c = SDFMESH_V(inside[1], outside[1]), d = SDFMESH_V(inside[1], outside[0]);
-        return sdfmesh_triangle(s, a, b, c, out) && sdfmesh_triangle(s, a, c, d, out);
+        unsigned a[2], b[2], c[2], d[2];
+        a[0] = inside[0], a[1] = outside[0];
+        b[0] = inside[0], b[1] = outside[1];
+        c[0] = inside[1], c[1] = outside[1];
+        d[0] = inside[1], d[1] = outside[0];
+        return sdfmesh_cut(s, i, j, k, a, b, c, out) && sdfmesh_cut(s, i, j, k, a, c, d, out);
     }
-#undef SDFMESH_V
 }
 
 int sdfmesh_tetra(mio_mesh *out, sdfmesh_fn f, void *user, const float low[3], float cell, const unsigned n[3])

@@ -197,14 +197,14 @@ static void test_zero_area(void)
     CHECK(sdfmesh_tetra(&m, grid_box, NULL, low, 0.1f, n));
     reference = (unsigned int *)malloc(m.index_count * sizeof(unsigned int));
     out = (unsigned int *)malloc(m.index_count * sizeof(unsigned int));
-    /* the mesher cannot wind what has no normal either: per patch repairs it */
-    CHECK_EQ(meshfix_orient(reference, m.indices, m.index_count, m.positions, m.vertex_count, 12, &patch, &r),
-             MESHFIX_OK);
+    /* the mesher winds by the tetrahedron, not by the triangle's own
+       normal, so even the triangles with no area come out consistent */
+    CHECK_EQ(meshfix_inspect(m.indices, m.index_count, m.positions, m.vertex_count, 12, &r), MESHFIX_OK);
     CHECK(r.triangles_zero_area > 100);
     CHECK_EQ(r.edges_inconsistent, 0);
     CHECK_EQ(r.patches_inside_out, 0);
     CHECK_EQ(r.euler_characteristic, 2);
-    memcpy(m.indices, reference, m.index_count * sizeof(unsigned int));
+    memcpy(reference, m.indices, m.index_count * sizeof(unsigned int));
     gen_flip_random(&m, 0.5, 5, NULL);
     CHECK_EQ(meshfix_orient(out, m.indices, m.index_count, m.positions, m.vertex_count, 12, &patch, &r), MESHFIX_OK);
     CHECK(memcmp(out, reference, m.index_count * sizeof(unsigned int)) == 0);
