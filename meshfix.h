@@ -483,6 +483,9 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #define MESHFIX__TRI_DUPLICATE 64u /* same vertex set as a lower triangle */
 #define MESHFIX__TRI_VOTE_OUT  128u /* SDF: as given, faces along the gradient */
 #define MESHFIX__TRI_VOTE_IN   256u /* SDF: as given, faces against it */
+#define MESHFIX__TRI_OPEN       512u /* has a boundary edge */
+#define MESHFIX__TRI_NOT_MANIFOLD 1024u /* has an edge shared by three or more */
+#define MESHFIX__TRI_SEAM      2048u /* closes a cycle of contradicting edges */
 /* patch bits */
 #define MESHFIX__PATCH_OPEN           1u /* a boundary edge or an odd share of a ring */
 #define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
@@ -524,7 +527,7 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
         return 0;
     half_edges = triangle_count * 3;
     return meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
-           meshfix__add_size(&total, half_edges + 16, 4, &plan->work) &&
+           meshfix__add_size(&total, 2 * half_edges + 16, 4, &plan->work) &&
            meshfix__add_size(&total, triangle_count, 2, &plan->tri_bits) &&
            meshfix__add_size(&total, vertex_range + 1, 4, &plan->vertex_work) &&
            meshfix__add_size(&total, triangle_count + 1, 4, &plan->patch_start) &&
@@ -715,33 +718,21 @@ typedef struct meshfix__edge_counts {
     size_t edges, boundary, manifold, non_manifold;
 } meshfix__edge_counts;
 
-MESHFIX__PRIVATE unsigned int meshfix__edge_high(const meshfix__mesh *m, unsigned int h)
-{
-    unsigned int a = m->indices[h], b = m->indices[h % 3 == 2 ? h - 2 : h + 1];
-    return a < b ? b : a;
-}
-
 MESHFIX__PRIVATE int meshfix__entry_less(const meshfix__edge_entry *a, const meshfix__edge_entry *b)
 {
     return a->high < b->high || (a->high == b->high && a->half_edge < b->half_edge);
 }
 
-MESHFIX__PRIVATE int meshfix__half_edge_less(const meshfix__mesh *m, unsigned int a, unsigned int b)
-{
-    unsigned int ka = meshfix__edge_high(m, a), kb = meshfix__edge_high(m, b);
-    return ka < kb || (ka == kb && a < b);
-}
-
-MESHFIX__PRIVATE void meshfix__sift_down(const meshfix__mesh *m, unsigned int *e, size_t root, size_t n)
+MESHFIX__PRIVATE void meshfix__sift_down(meshfix__edge_entry *e, size_t root, size_t n)
 {
     for (;;) {
         size_t child = 2 * root + 1;
-        unsigned int x;
+        meshfix__edge_entry x;
         if (child >= n)
             return;
-        if (child + 1 < n && meshfix__half_edge_less(m, e[child], e[child + 1]))
+        if (child + 1 < n && meshfix__entry_less(&e[child], &e[child + 1]))
             child++;
-        if (!meshfix__half_edge_less(m, e[root], e[child]))
+        if (!meshfix__entry_less(&e[root], &e[child]))
             return;
         x = e[root];
         e[root] = e[child];
@@ -751,86 +742,80 @@ MESHFIX__PRIVATE void meshfix__sift_down(const meshfix__mesh *m, unsigned int *e
 }
 
 /* Links the half-edges of one undirected edge (a run of a sorted bucket):
-   a pair becomes mates, three or more a ring in increasing order. */
-MESHFIX__PRIVATE void meshfix__link_edge(meshfix__mesh *m, const unsigned int *run, size_t n,
+   one is a boundary, a pair become mates, three or more a ring in
+   increasing order. */
+MESHFIX__PRIVATE void meshfix__link_edge(meshfix__mesh *m, const meshfix__edge_entry *run, size_t n,
                                          meshfix__edge_counts *counts)
 {
     size_t k;
     counts->edges++;
     if (n == 1) {
         counts->boundary++;
+        m->mate[run[0].half_edge] = MESHFIX__NONE;
     } else if (n == 2) {
         counts->manifold++;
-        m->mate[run[0]] = run[1];
-        m->mate[run[1]] = run[0];
+        m->mate[run[0].half_edge] = run[1].half_edge;
+        m->mate[run[1].half_edge] = run[0].half_edge;
     } else {
         counts->non_manifold++;
         for (k = 0; k < n; ++k)
-            m->mate[run[k]] = run[k + 1 < n ? k + 1 : 0] | MESHFIX__RING;
+            m->mate[run[k].half_edge] = run[k + 1 < n ? k + 1 : 0].half_edge | MESHFIX__RING;
     }
 }
 
-/* Sorts a bucket of half-edges by (higher vertex, half-edge) and links
-   each run of one edge. A bucket holds the edges of one vertex, a handful
-   in a mesh: sorted as (key, id) pairs on the stack. A vertex shared by
-   thousands of triangles takes heapsort in place, O(k log k) with no
-   memory. The order is total, so both give the same links. */
+/* Sorts a bucket by (higher vertex, half-edge) and links each run of one
+   edge. A bucket holds the edges of one vertex, a handful in a mesh:
+   insertion sort. A vertex shared by thousands of triangles takes
+   heapsort, O(k log k) with no memory. The order is total, so both give
+   the same links. */
 #define MESHFIX__SMALL_BUCKET 32
-MESHFIX__PRIVATE void meshfix__link_bucket(meshfix__mesh *m, unsigned int *ids, size_t n,
+MESHFIX__PRIVATE void meshfix__link_bucket(meshfix__mesh *m, meshfix__edge_entry *e, size_t n,
                                            meshfix__edge_counts *counts)
 {
     size_t i, j;
     if (n <= MESHFIX__SMALL_BUCKET) {
-        meshfix__edge_entry e[MESHFIX__SMALL_BUCKET];
-        for (i = 0; i < n; ++i) {
-            meshfix__edge_entry x;
-            x.high = meshfix__edge_high(m, ids[i]);
-            x.half_edge = ids[i];
+        for (i = 1; i < n; ++i) {
+            meshfix__edge_entry x = e[i];
             for (j = i; j > 0 && meshfix__entry_less(&x, &e[j - 1]); --j)
                 e[j] = e[j - 1];
             e[j] = x;
         }
-        for (i = 0; i < n; ++i)
-            ids[i] = e[i].half_edge;
-        for (i = 0; i < n; i = j) {
-            for (j = i + 1; j < n && e[j].high == e[i].high; ++j) {
-            }
-            meshfix__link_edge(m, ids + i, j - i, counts);
+    } else {
+        for (i = n / 2; i-- > 0;)
+            meshfix__sift_down(e, i, n);
+        for (i = n - 1; i > 0; --i) {
+            meshfix__edge_entry x = e[0];
+            e[0] = e[i];
+            e[i] = x;
+            meshfix__sift_down(e, 0, i);
         }
-        return;
-    }
-    for (i = n / 2; i-- > 0;)
-        meshfix__sift_down(m, ids, i, n);
-    for (i = n - 1; i > 0; --i) {
-        unsigned int x = ids[0];
-        ids[0] = ids[i];
-        ids[i] = x;
-        meshfix__sift_down(m, ids, 0, i);
     }
     for (i = 0; i < n; i = j) {
-        unsigned int high = meshfix__edge_high(m, ids[i]);
-        for (j = i + 1; j < n && meshfix__edge_high(m, ids[j]) == high; ++j) {
+        for (j = i + 1; j < n && e[j].high == e[i].high; ++j) {
         }
-        meshfix__link_edge(m, ids + i, j - i, counts);
+        meshfix__link_edge(m, e + i, j - i, counts);
     }
 }
 
 /* Groups the half-edges by undirected edge: a counting sort into one
-   bucket per lower vertex (each bucket in increasing half-edge order),
-   then each bucket sorted by its higher vertex and cut into runs. */
+   bucket per lower vertex (each bucket in increasing half-edge order, with
+   the higher vertex alongside), then each bucket sorted by its higher
+   vertex and cut into runs. */
 MESHFIX__PRIVATE void meshfix__build_edges(meshfix__mesh *m, meshfix__edge_counts *counts)
 {
-    unsigned int *end = m->vertex_work, *ids = m->work, sum = 0, k;
+    meshfix__edge_entry *entries = (meshfix__edge_entry *)(void *)m->work;
+    unsigned int *end = m->vertex_work, sum = 0, k;
     size_t t, v, begin = 0;
     MESHFIX_MEMSET(end, 0, (m->vertex_range + 1) * sizeof(unsigned int));
     for (t = 0; t < m->triangle_count; ++t) {
         const unsigned int *tri = m->indices + 3 * t;
-        if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
+        if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE) {
+            m->mate[3 * t] = m->mate[3 * t + 1] = m->mate[3 * t + 2] = MESHFIX__NONE;
             continue;
-        for (k = 0; k < 3; ++k) {
-            unsigned int a = tri[k], b = tri[k == 2 ? 0 : k + 1];
-            end[a < b ? a : b]++;
         }
+        end[tri[0] < tri[1] ? tri[0] : tri[1]]++;
+        end[tri[1] < tri[2] ? tri[1] : tri[2]]++;
+        end[tri[2] < tri[0] ? tri[2] : tri[0]]++;
     }
     for (v = 0; v <= m->vertex_range; ++v) {
         unsigned int n = end[v];
@@ -843,14 +828,15 @@ MESHFIX__PRIVATE void meshfix__build_edges(meshfix__mesh *m, meshfix__edge_count
             continue;
         for (k = 0; k < 3; ++k) {
             unsigned int a = tri[k], b = tri[k == 2 ? 0 : k + 1];
-            ids[end[a < b ? a : b]++] = (unsigned int)(3 * t) + k;
+            meshfix__edge_entry *e = &entries[end[a < b ? a : b]++];
+            e->high = a < b ? b : a;
+            e->half_edge = (unsigned int)(3 * t) + k;
         }
     }
     /* end[v] is now where bucket v ends */
-    MESHFIX_MEMSET(m->mate, 0xFF, 3 * m->triangle_count * sizeof(unsigned int));
     MESHFIX_MEMSET(counts, 0, sizeof(*counts));
     for (v = 0; v < m->vertex_range; begin = end[v++])
-        meshfix__link_bucket(m, ids + begin, end[v] - begin, counts);
+        meshfix__link_bucket(m, entries + begin, end[v] - begin, counts);
 }
 
 MESHFIX__PRIVATE int meshfix__is_mate(unsigned int link)
@@ -1015,72 +1001,126 @@ MESHFIX__PRIVATE size_t meshfix__count_non_manifold_vertices(meshfix__mesh *m)
 
 /* ===== >>patches ===== */
 
-/* The manifold neighbours of t as half-edges, ordered by neighbour
-   triangle: an order that flipping t does not change, so the spanning tree
-   (and the seam left in a non-orientable patch) is the same on every run.
-   Returns how many; marks the patch when t has other kinds of edges. */
-MESHFIX__PRIVATE unsigned int meshfix__neighbours(meshfix__mesh *m, unsigned int t, unsigned int patch,
-                                                 unsigned int h_out[3])
+/* Patches are the classes of a union-find over triangles joined by
+   manifold edges. Each triangle keeps its parent and, in TRI_RELATIVE, its
+   winding relative to that parent. A class's root is its lowest triangle,
+   so every parent is lower than its child: one pass in index order then
+   turns parents into patch ids and relative bits into "relative to the
+   seed", the lowest triangle. Unions follow triangle order, which flipping
+   a triangle does not change, so the seam left in a non-orientable patch
+   is the same on every run and for every input winding. */
+MESHFIX__PRIVATE unsigned int meshfix__patch_root(meshfix__mesh *m, unsigned int t, unsigned int *relative)
 {
-    unsigned int h, n = 0, i, j, u[3];
-    for (h = 3 * t; h < 3 * t + 3; ++h) {
-        unsigned int g = m->mate[h];
-        if (meshfix__is_mate(g)) {
-            u[n] = g / 3;
-            h_out[n++] = h;
-            continue;
+    unsigned int *parent = m->tri_patch, r = 0;
+    while (parent[t] != t) {
+        unsigned int up = parent[t];
+        /* path halving: hop t to its grandparent, composing the bits */
+        if (parent[up] != up) {
+            m->tri_bits[t] ^= (unsigned short)(m->tri_bits[up] & MESHFIX__TRI_RELATIVE);
+            parent[t] = parent[up];
         }
-        m->patch_bits[patch] |= MESHFIX__PATCH_NOT_MANIFOLD;
-        if (g == MESHFIX__NONE)
-            m->patch_bits[patch] |= MESHFIX__PATCH_OPEN;
+        r ^= m->tri_bits[t] & MESHFIX__TRI_RELATIVE;
+        t = parent[t];
     }
-    for (i = 1; i < n; ++i)
-        for (j = i; j > 0 && u[j - 1] > u[j]; --j) {
-            unsigned int x = h_out[j], y = u[j];
-            h_out[j] = h_out[j - 1];
-            u[j] = u[j - 1];
-            h_out[j - 1] = x;
-            u[j - 1] = y;
-        }
-    return n;
+    *relative = r;
+    return t;
 }
 
-/* Breadth-first flood fill across manifold edges. The seed of each patch is
-   its lowest triangle; a neighbour that runs the shared edge the same way
-   gets the opposite relative flip. */
+/* Records that t and u wind the same way relative to their seed unless
+   `opposite`; a contradiction marks t as lying on the seam. */
+MESHFIX__PRIVATE void meshfix__join_triangles(meshfix__mesh *m, unsigned int t, unsigned int u, unsigned int opposite)
+{
+    unsigned int rt, ru, bt, bu, high;
+    rt = meshfix__patch_root(m, t, &bt);
+    ru = meshfix__patch_root(m, u, &bu);
+    if (rt == ru) {
+        if ((bt ^ bu) != opposite)
+            m->tri_bits[t] |= MESHFIX__TRI_SEAM;
+        return;
+    }
+    high = rt < ru ? ru : rt;
+    m->tri_patch[high] = rt < ru ? rt : ru;
+    m->tri_bits[high] = (unsigned short)(m->tri_bits[high] | (bt ^ bu ^ opposite));
+}
+
+/* Joins t to its lower manifold neighbours, in order of neighbour; marks
+   t when it has other kinds of edges. */
+MESHFIX__PRIVATE void meshfix__join_lower_neighbours(meshfix__mesh *m, unsigned int t)
+{
+    unsigned int h, n = 0, i, j, u[3], opposite[3];
+    for (h = 3 * t; h < 3 * t + 3; ++h) {
+        unsigned int g = m->mate[h];
+        if (!meshfix__is_mate(g)) {
+            m->tri_bits[t] |= g == MESHFIX__NONE ? MESHFIX__TRI_OPEN : MESHFIX__TRI_NOT_MANIFOLD;
+            continue;
+        }
+        if (g / 3 > t)
+            continue;
+        for (j = n++; j > 0 && u[j - 1] > g / 3; --j) {
+            u[j] = u[j - 1];
+            opposite[j] = opposite[j - 1];
+        }
+        u[j] = g / 3;
+        /* two triangles that run an edge the same way disagree */
+        opposite[j] = (unsigned int)meshfix__same_direction(m, h, g);
+    }
+    for (i = 0; i < n; ++i)
+        meshfix__join_triangles(m, t, u[i], opposite[i]);
+}
+
+/* Numbers the patches by their seeds, gives each triangle its patch and
+   its winding relative to the seed, and lists each patch's triangles in
+   increasing order in `queue`. */
+MESHFIX__PRIVATE void meshfix__number_patches(meshfix__mesh *m)
+{
+    unsigned int t, p, patch = 0, sum = 0, triangles = (unsigned int)m->triangle_count;
+    for (t = 0; t < triangles; ++t) {
+        unsigned int parent = m->tri_patch[t], bits = m->tri_bits[t];
+        if (parent == MESHFIX__NONE)
+            continue;
+        if (parent == t) {
+            m->patch_start[patch] = 0;
+            m->patch_bits[patch] = 0;
+            m->tri_patch[t] = patch++;
+        } else {
+            /* the parent is lower: already numbered and relative to the seed */
+            m->tri_patch[t] = m->tri_patch[parent];
+            bits ^= m->tri_bits[parent] & MESHFIX__TRI_RELATIVE;
+            m->tri_bits[t] = (unsigned short)bits;
+        }
+        p = m->tri_patch[t];
+        m->patch_start[p]++;
+        if (bits & (MESHFIX__TRI_OPEN | MESHFIX__TRI_NOT_MANIFOLD))
+            m->patch_bits[p] |= MESHFIX__PATCH_NOT_MANIFOLD;
+        if (bits & MESHFIX__TRI_OPEN)
+            m->patch_bits[p] |= MESHFIX__PATCH_OPEN;
+        if (bits & MESHFIX__TRI_SEAM)
+            m->patch_bits[p] |= MESHFIX__PATCH_NON_ORIENTABLE;
+    }
+    for (p = 0; p < patch; ++p) {
+        unsigned int n = m->patch_start[p];
+        m->patch_start[p] = sum;
+        sum += n;
+    }
+    for (t = 0; t < triangles; ++t)
+        if (m->tri_patch[t] != MESHFIX__NONE)
+            m->queue[m->patch_start[m->tri_patch[t]]++] = t;
+    /* patch_start[p] is now where patch p ends */
+    for (p = patch; p > 0; --p)
+        m->patch_start[p] = m->patch_start[p - 1];
+    m->patch_start[0] = 0;
+    m->patch_count = patch;
+}
+
 MESHFIX__PRIVATE void meshfix__flood_patches(meshfix__mesh *m)
 {
-    size_t seed, head = 0, tail = 0;
-    unsigned int patch = 0;
-    for (seed = 0; seed < m->triangle_count; ++seed)
-        m->tri_patch[seed] = MESHFIX__NONE;
-    for (seed = 0; seed < m->triangle_count; ++seed) {
-        if (m->tri_patch[seed] != MESHFIX__NONE || (m->tri_bits[seed] & MESHFIX__TRI_DEGENERATE))
-            continue;
-        m->patch_start[patch] = (unsigned int)tail;
-        m->patch_bits[patch] = 0;
-        m->tri_patch[seed] = patch;
-        m->queue[tail++] = (unsigned int)seed;
-        while (head < tail) {
-            unsigned int t = m->queue[head++], half_edges[3], i;
-            unsigned int relative = m->tri_bits[t] & MESHFIX__TRI_RELATIVE;
-            unsigned int count = meshfix__neighbours(m, t, patch, half_edges);
-            for (i = 0; i < count; ++i) {
-                unsigned int h = half_edges[i], g = m->mate[h], u = g / 3;
-                unsigned int wanted = relative ^ (unsigned int)meshfix__same_direction(m, h, g);
-                if (m->tri_patch[u] == MESHFIX__NONE) {
-                    m->tri_patch[u] = patch;
-                    m->tri_bits[u] = (unsigned short)((m->tri_bits[u] & ~MESHFIX__TRI_RELATIVE) | wanted);
-                    m->queue[tail++] = u;
-                } else if ((m->tri_bits[u] & MESHFIX__TRI_RELATIVE) != wanted) {
-                    m->patch_bits[patch] |= MESHFIX__PATCH_NON_ORIENTABLE;
-                }
-            }
-        }
-        patch++;
-    }
-    m->patch_start[patch] = (unsigned int)tail;
-    m->patch_count = patch;
+    unsigned int t, triangles = (unsigned int)m->triangle_count;
+    for (t = 0; t < triangles; ++t)
+        m->tri_patch[t] = (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE) ? MESHFIX__NONE : t;
+    for (t = 0; t < triangles; ++t)
+        if (m->tri_patch[t] != MESHFIX__NONE)
+            meshfix__join_lower_neighbours(m, t);
+    meshfix__number_patches(m);
 }
 
 /* ===== >>components ===== */
