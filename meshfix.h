@@ -774,9 +774,11 @@ MESHFIX__PRIVATE void meshfix__link_bucket(meshfix__mesh *m, meshfix__edge_entry
 {
     size_t i, j;
     if (n <= MESHFIX__SMALL_BUCKET) {
+        /* stable, and the bucket arrives in half-edge order: comparing
+           the higher vertex alone gives the same total order */
         for (i = 1; i < n; ++i) {
             meshfix__edge_entry x = e[i];
-            for (j = i; j > 0 && meshfix__entry_less(&x, &e[j - 1]); --j)
+            for (j = i; j > 0 && x.high < e[j - 1].high; --j)
                 e[j] = e[j - 1];
             e[j] = x;
         }
@@ -3149,17 +3151,17 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
     return MESHFIX_OK;
 }
 
+/* One pass; reads each triangle whole before writing it, so destination
+   may be indices. */
 MESHFIX__PRIVATE void meshfix__write_indices(const meshfix__mesh *m, unsigned int *destination)
 {
     size_t t;
-    if (destination != m->indices)
-        MESHFIX_MEMCPY(destination, m->indices, 3 * m->triangle_count * sizeof(unsigned int));
     for (t = 0; t < m->triangle_count; ++t) {
-        if (m->tri_bits[t] & MESHFIX__TRI_FLIP) {
-            unsigned int x = destination[3 * t + 1];
-            destination[3 * t + 1] = destination[3 * t + 2];
-            destination[3 * t + 2] = x;
-        }
+        unsigned int a = m->indices[3 * t], b = m->indices[3 * t + 1], c = m->indices[3 * t + 2];
+        int flip = (m->tri_bits[t] & MESHFIX__TRI_FLIP) != 0;
+        destination[3 * t] = a;
+        destination[3 * t + 1] = flip ? c : b;
+        destination[3 * t + 2] = flip ? b : c;
     }
 }
 
