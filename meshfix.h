@@ -67,12 +67,13 @@
           lower vertex; each bucket is sorted by its higher vertex, so the
           half-edges of one edge lie together: a pair become mates, three
           or more are linked into a ring, a single one is a boundary.
-       3. patches: breadth-first flood fill across manifold edges from the
-          lowest unvisited triangle; each triangle gets its flip relative to
-          the patch seed (a neighbour traversing the shared edge in the same
-          direction must be flipped). A contradiction means the patch is
-          non-orientable (Moebius): the fill still orients it as far as its
-          spanning tree reaches and the remaining edges are reported.
+       3. patches: the flood fill across manifold edges, done as a
+          union-find with parity in triangle order: each triangle gets its
+          flip relative to the patch seed, its lowest triangle (a
+          neighbour traversing the shared edge in the same direction must
+          be flipped). A contradiction means the patch is non-orientable
+          (Moebius): it is still oriented as far as its spanning tree
+          reaches and the remaining edges are reported.
        4. components: union-find over the rings of non-manifold edges; a
           patch is closed when it owns an even count of each ring.
        5. policy: each patch is then turned as a whole:
@@ -125,7 +126,7 @@
 
    DETERMINISM & THREAD SAFETY
    The output depends only on the inputs and options: counting sorts with
-   index tie-breaks, BFS in index order, no hash iteration, no qsort. Sums
+   index tie-breaks, unions in triangle order, no hash iteration, no qsort. Sums
    are accumulated in double in a fixed order. Compilers that contract to
    FMA or use x87 precision can change decisions whose margin is within
    rounding (a patch whose two sides have equal area). There are no mutable
@@ -517,9 +518,11 @@ MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t eleme
 }
 
 /* One block holds every array. `work` holds the edge buckets, then the
-   duplicate table, then the flood fill's queue and patch ids; `mate` is
-   reused at the end to group patches by component. On machines where a
-   fresh page costs microseconds, these bytes are most of the time. */
+   duplicate table, then the union-find parents, which become patch ids,
+   and each patch's list of triangles. `mate` holds each half-edge's higher
+   vertex until its bucket links it, and groups patches by component at
+   the end. On machines where a fresh page costs microseconds, these bytes
+   are most of the time. */
 MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count)
 {
     size_t total = 0, half_edges;
@@ -527,7 +530,7 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
         return 0;
     half_edges = triangle_count * 3;
     return meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
-           meshfix__add_size(&total, 2 * half_edges + 16, 4, &plan->work) &&
+           meshfix__add_size(&total, half_edges + 16, 4, &plan->work) &&
            meshfix__add_size(&total, triangle_count, 2, &plan->tri_bits) &&
            meshfix__add_size(&total, vertex_range + 1, 4, &plan->vertex_work) &&
            meshfix__add_size(&total, triangle_count + 1, 4, &plan->patch_start) &&
@@ -550,9 +553,9 @@ typedef struct meshfix__mesh {
     const char *positions;        /* NULL when not given */
     size_t stride;
     unsigned int *mate;           /* 3 per triangle */
-    unsigned int *work;           /* 3 per triangle: edge buckets, duplicate table, flood fill */
+    unsigned int *work;           /* 3 per triangle: edge buckets, duplicate table, patches */
     unsigned int *queue;          /* triangles in patch order (inside `work`) */
-    unsigned int *tri_patch;      /* (inside `work`) */
+    unsigned int *tri_patch;      /* union-find parent, then patch id (inside `work`) */
     unsigned short *tri_bits;
     unsigned int *vertex_work;    /* sort counts, then vertex marks */
     unsigned int *patch_start;    /* patch p owns queue[patch_start[p] .. patch_start[p + 1]) */
@@ -718,21 +721,24 @@ typedef struct meshfix__edge_counts {
     size_t edges, boundary, manifold, non_manifold;
 } meshfix__edge_counts;
 
-MESHFIX__PRIVATE int meshfix__entry_less(const meshfix__edge_entry *a, const meshfix__edge_entry *b)
+/* While edges are grouped, mate[h] holds the higher vertex of h's edge:
+   each half-edge is read from there until its own bucket links it. */
+MESHFIX__PRIVATE int meshfix__half_edge_less(const meshfix__mesh *m, unsigned int a, unsigned int b)
 {
-    return a->high < b->high || (a->high == b->high && a->half_edge < b->half_edge);
+    unsigned int ka = m->mate[a], kb = m->mate[b];
+    return ka < kb || (ka == kb && a < b);
 }
 
-MESHFIX__PRIVATE void meshfix__sift_down(meshfix__edge_entry *e, size_t root, size_t n)
+MESHFIX__PRIVATE void meshfix__sift_down(const meshfix__mesh *m, unsigned int *e, size_t root, size_t n)
 {
     for (;;) {
         size_t child = 2 * root + 1;
-        meshfix__edge_entry x;
+        unsigned int x;
         if (child >= n)
             return;
-        if (child + 1 < n && meshfix__entry_less(&e[child], &e[child + 1]))
+        if (child + 1 < n && meshfix__half_edge_less(m, e[child], e[child + 1]))
             child++;
-        if (!meshfix__entry_less(&e[root], &e[child]))
+        if (!meshfix__half_edge_less(m, e[root], e[child]))
             return;
         x = e[root];
         e[root] = e[child];
@@ -744,69 +750,78 @@ MESHFIX__PRIVATE void meshfix__sift_down(meshfix__edge_entry *e, size_t root, si
 /* Links the half-edges of one undirected edge (a run of a sorted bucket):
    one is a boundary, a pair become mates, three or more a ring in
    increasing order. */
-MESHFIX__PRIVATE void meshfix__link_edge(meshfix__mesh *m, const meshfix__edge_entry *run, size_t n,
+MESHFIX__PRIVATE void meshfix__link_edge(meshfix__mesh *m, const unsigned int *run, size_t n,
                                          meshfix__edge_counts *counts)
 {
     size_t k;
     counts->edges++;
     if (n == 1) {
         counts->boundary++;
-        m->mate[run[0].half_edge] = MESHFIX__NONE;
+        m->mate[run[0]] = MESHFIX__NONE;
     } else if (n == 2) {
         counts->manifold++;
-        m->mate[run[0].half_edge] = run[1].half_edge;
-        m->mate[run[1].half_edge] = run[0].half_edge;
+        m->mate[run[0]] = run[1];
+        m->mate[run[1]] = run[0];
     } else {
         counts->non_manifold++;
         for (k = 0; k < n; ++k)
-            m->mate[run[k].half_edge] = run[k + 1 < n ? k + 1 : 0].half_edge | MESHFIX__RING;
+            m->mate[run[k]] = run[k + 1 < n ? k + 1 : 0] | MESHFIX__RING;
     }
 }
 
-/* Sorts a bucket by (higher vertex, half-edge) and links each run of one
-   edge. A bucket holds the edges of one vertex, a handful in a mesh:
-   insertion sort. A vertex shared by thousands of triangles takes
-   heapsort, O(k log k) with no memory. The order is total, so both give
-   the same links. */
+/* Sorts a bucket of half-edges by (higher vertex, half-edge) and links
+   each run of one edge. A bucket holds the edges of one vertex, a handful
+   in a mesh: insertion sort of (key, id) pairs on the stack, stable, and
+   the bucket arrives in half-edge order, so the key alone gives the total
+   order. A vertex shared by thousands of triangles takes heapsort in
+   place, O(k log k) with no memory. Both give the same links. A run's
+   keys are all read before it is linked over them. */
 #define MESHFIX__SMALL_BUCKET 32
-MESHFIX__PRIVATE void meshfix__link_bucket(meshfix__mesh *m, meshfix__edge_entry *e, size_t n,
+MESHFIX__PRIVATE void meshfix__link_bucket(meshfix__mesh *m, unsigned int *ids, size_t n,
                                            meshfix__edge_counts *counts)
 {
     size_t i, j;
     if (n <= MESHFIX__SMALL_BUCKET) {
-        /* stable, and the bucket arrives in half-edge order: comparing
-           the higher vertex alone gives the same total order */
-        for (i = 1; i < n; ++i) {
-            meshfix__edge_entry x = e[i];
+        meshfix__edge_entry e[MESHFIX__SMALL_BUCKET];
+        for (i = 0; i < n; ++i) {
+            meshfix__edge_entry x;
+            x.high = m->mate[ids[i]];
+            x.half_edge = ids[i];
             for (j = i; j > 0 && x.high < e[j - 1].high; --j)
                 e[j] = e[j - 1];
             e[j] = x;
         }
-    } else {
-        for (i = n / 2; i-- > 0;)
-            meshfix__sift_down(e, i, n);
-        for (i = n - 1; i > 0; --i) {
-            meshfix__edge_entry x = e[0];
-            e[0] = e[i];
-            e[i] = x;
-            meshfix__sift_down(e, 0, i);
+        for (i = 0; i < n; ++i)
+            ids[i] = e[i].half_edge;
+        for (i = 0; i < n; i = j) {
+            for (j = i + 1; j < n && e[j].high == e[i].high; ++j) {
+            }
+            meshfix__link_edge(m, ids + i, j - i, counts);
         }
+        return;
+    }
+    for (i = n / 2; i-- > 0;)
+        meshfix__sift_down(m, ids, i, n);
+    for (i = n - 1; i > 0; --i) {
+        unsigned int x = ids[0];
+        ids[0] = ids[i];
+        ids[i] = x;
+        meshfix__sift_down(m, ids, 0, i);
     }
     for (i = 0; i < n; i = j) {
-        for (j = i + 1; j < n && e[j].high == e[i].high; ++j) {
+        unsigned int high = m->mate[ids[i]];
+        for (j = i + 1; j < n && m->mate[ids[j]] == high; ++j) {
         }
-        meshfix__link_edge(m, e + i, j - i, counts);
+        meshfix__link_edge(m, ids + i, j - i, counts);
     }
 }
 
 /* Groups the half-edges by undirected edge: a counting sort into one
-   bucket per lower vertex (each bucket in increasing half-edge order, with
-   the higher vertex alongside), then each bucket sorted by its higher
-   vertex and cut into runs. */
+   bucket per lower vertex (each bucket in increasing half-edge order),
+   then each bucket sorted by its higher vertex and cut into runs. */
 MESHFIX__PRIVATE void meshfix__build_edges(meshfix__mesh *m, meshfix__edge_counts *counts)
 {
-    meshfix__edge_entry *entries = (meshfix__edge_entry *)(void *)m->work;
-    unsigned int *end = m->vertex_work, sum = 0, k;
+    unsigned int *end = m->vertex_work, *ids = m->work, sum = 0, k;
     size_t t, v, begin = 0;
     MESHFIX_MEMSET(end, 0, (m->vertex_range + 1) * sizeof(unsigned int));
     for (t = 0; t < m->triangle_count; ++t) {
@@ -829,16 +844,15 @@ MESHFIX__PRIVATE void meshfix__build_edges(meshfix__mesh *m, meshfix__edge_count
         if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
             continue;
         for (k = 0; k < 3; ++k) {
-            unsigned int a = tri[k], b = tri[k == 2 ? 0 : k + 1];
-            meshfix__edge_entry *e = &entries[end[a < b ? a : b]++];
-            e->high = a < b ? b : a;
-            e->half_edge = (unsigned int)(3 * t) + k;
+            unsigned int a = tri[k], b = tri[k == 2 ? 0 : k + 1], h = (unsigned int)(3 * t) + k;
+            ids[end[a < b ? a : b]++] = h;
+            m->mate[h] = a < b ? b : a;
         }
     }
     /* end[v] is now where bucket v ends */
     MESHFIX_MEMSET(counts, 0, sizeof(*counts));
     for (v = 0; v < m->vertex_range; begin = end[v++])
-        meshfix__link_bucket(m, entries + begin, end[v] - begin, counts);
+        meshfix__link_bucket(m, ids + begin, end[v] - begin, counts);
 }
 
 MESHFIX__PRIVATE int meshfix__is_mate(unsigned int link)
@@ -1114,7 +1128,7 @@ MESHFIX__PRIVATE void meshfix__number_patches(meshfix__mesh *m)
     m->patch_count = patch;
 }
 
-MESHFIX__PRIVATE void meshfix__flood_patches(meshfix__mesh *m)
+MESHFIX__PRIVATE void meshfix__find_patches(meshfix__mesh *m)
 {
     unsigned int t, triangles = (unsigned int)m->triangle_count;
     for (t = 0; t < triangles; ++t)
@@ -3110,7 +3124,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
         r->vertices_non_manifold = meshfix__count_non_manifold_vertices(m);
     }
 
-    meshfix__flood_patches(m);
+    meshfix__find_patches(m);
     meshfix__join_components(m);
     r->patches = m->patch_count;
     r->components = m->component_count;
