@@ -1470,10 +1470,11 @@ MESHFIX__PRIVATE float meshfix__box_area(const float low[3], const float high[3]
     return x < 0 ? 0.0f : 2.0f * (x * y + y * z + z * x);
 }
 
-/* In double: three floats near 3e38 would overflow to infinity in float. */
-MESHFIX__PRIVATE double meshfix__centroid(const float *corners, int axis)
+/* In double: three floats near 3e38 would overflow to infinity in float.
+   The mean of three floats fits in a float again. */
+MESHFIX__PRIVATE float meshfix__centroid(const float *corners, int axis)
 {
-    return ((double)corners[axis] + corners[3 + axis] + corners[6 + axis]) / 3.0;
+    return (float)(((double)corners[axis] + corners[3 + axis] + corners[6 + axis]) / 3.0);
 }
 
 #define MESHFIX__BINS 12
@@ -1490,105 +1491,156 @@ MESHFIX__PRIVATE unsigned int meshfix__bin(double centroid, double low, double s
     return x >= (double)(MESHFIX__BINS - 1) ? MESHFIX__BINS - 1 : (unsigned int)x;
 }
 
-/* Splits slots [first, first + count) at the best of 12 centroid bins
-   along the widest axis; returns the size of the left part, 0 for a leaf. */
-MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first, unsigned int count)
+/* While the tree is built, the 9 floats of a slot hold its triangle's box
+   (low x y z, high x y z) and centroid, each computed once; the corners
+   replace them at the end. What the build knows of a range of slots: the
+   box around its triangles and the box around their centroids. A split
+   gets both for its two halves from its bins, so no level re-reads its
+   slots to fit boxes. */
+#define MESHFIX__SLOT_CENTROID 6
+typedef struct meshfix__range {
+    unsigned int count;
+    float box[6];       /* low x y z, high x y z */
+    float centroids[6];
+} meshfix__range;
+
+MESHFIX__PRIVATE void meshfix__empty_range(meshfix__range *r)
 {
-    double clow[3] = {1e300, 1e300, 1e300}, chigh[3] = {-1e300, -1e300, -1e300}, scale;
-    float best_cost;
-    float bin_low[MESHFIX__BINS][3], bin_high[MESHFIX__BINS][3];
-    unsigned int bin_count[MESHFIX__BINS], i, left = 0, best = 0, j;
+    int k;
+    r->count = 0;
+    for (k = 0; k < 3; ++k) {
+        r->box[k] = 1e30f, r->box[3 + k] = -1e30f;
+        r->centroids[k] = 1e30f, r->centroids[3 + k] = -1e30f;
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__range_add_slot(meshfix__range *r, const float *slot)
+{
+    r->count++;
+    meshfix__grow_box(r->box, r->box + 3, slot);
+    meshfix__grow_box(r->box, r->box + 3, slot + 3);
+    meshfix__grow_box(r->centroids, r->centroids + 3, slot + MESHFIX__SLOT_CENTROID);
+}
+
+MESHFIX__PRIVATE void meshfix__range_add_range(meshfix__range *r, const meshfix__range *other)
+{
+    if (other->count == 0)
+        return; /* its box is inside out: its corners are not points */
+    r->count += other->count;
+    meshfix__grow_box(r->box, r->box + 3, other->box);
+    meshfix__grow_box(r->box, r->box + 3, other->box + 3);
+    meshfix__grow_box(r->centroids, r->centroids + 3, other->centroids);
+    meshfix__grow_box(r->centroids, r->centroids + 3, other->centroids + 3);
+}
+
+/* Corners by vertex id, not by winding: a hit (and its rounding) must
+   not change when the triangle is flipped. */
+MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__mesh *m, unsigned int t, float corners[9])
+{
+    unsigned int sorted[3], c;
+    meshfix__sorted_triangle(m, t, sorted);
+    for (c = 0; c < 3; ++c)
+        MESHFIX_MEMCPY(corners + 3 * c, meshfix__position(m, sorted[c]), 3 * sizeof(float));
+}
+
+MESHFIX__PRIVATE void meshfix__fit_range(const meshfix__bvh *b, unsigned int first, unsigned int count,
+                                         meshfix__range *r)
+{
+    unsigned int i;
+    meshfix__empty_range(r);
+    for (i = first; i < first + count; ++i)
+        meshfix__range_add_slot(r, b->corners + 9 * (size_t)i);
+}
+
+/* Moves the slots whose centroid falls in a bin below `split` to the front;
+   returns how many. */
+MESHFIX__PRIVATE unsigned int meshfix__partition(meshfix__bvh *b, unsigned int first, unsigned int count, int axis,
+                                                 double low, double scale, unsigned int split)
+{
+    unsigned int lo = first, hi = first + count;
+    while (lo < hi) {
+        float *c = b->corners + 9 * (size_t)lo;
+        if (meshfix__bin(c[MESHFIX__SLOT_CENTROID + axis], low, scale) < split) {
+            lo++;
+        } else {
+            float tmp[9];
+            unsigned int id = b->order[lo];
+            hi--;
+            MESHFIX_MEMCPY(tmp, c, sizeof(tmp));
+            MESHFIX_MEMCPY(c, b->corners + 9 * (size_t)hi, sizeof(tmp));
+            MESHFIX_MEMCPY(b->corners + 9 * (size_t)hi, tmp, sizeof(tmp));
+            b->order[lo] = b->order[hi];
+            b->order[hi] = id;
+        }
+    }
+    return lo - first;
+}
+
+/* Splits slots [first, first + r->count) at the best of 12 centroid bins
+   along the widest axis of their centroids, by the surface area
+   heuristic, and describes the halves; returns the size of the left one,
+   0 for a leaf. */
+MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first, const meshfix__range *r,
+                                             meshfix__range *left, meshfix__range *right)
+{
+    meshfix__range bins[MESHFIX__BINS], below[MESHFIX__BINS];
+    unsigned int i, best = 0, j, count = r->count, half;
+    float best_cost = 1e38f;
+    double scale;
     int axis = 0, k;
     if (count <= MESHFIX__LEAF)
         return 0;
-    for (i = first; i < first + count; ++i)
-        for (k = 0; k < 3; ++k) {
-            double c = meshfix__centroid(b->corners + 9 * (size_t)i, k);
-            clow[k] = c < clow[k] ? c : clow[k];
-            chigh[k] = c > chigh[k] ? c : chigh[k];
-        }
     for (k = 1; k < 3; ++k)
-        axis = chigh[k] - clow[k] > chigh[axis] - clow[axis] ? k : axis;
-    if (!(chigh[axis] > clow[axis]))
-        return count / 2; /* all centroids in one point: halve by slot */
-    scale = (double)MESHFIX__BINS / (chigh[axis] - clow[axis]);
-    for (j = 0; j < MESHFIX__BINS; ++j) {
-        bin_count[j] = 0;
-        for (k = 0; k < 3; ++k)
-            bin_low[j][k] = 1e30f, bin_high[j][k] = -1e30f;
-    }
-    for (i = first; i < first + count; ++i) {
-        const float *c = b->corners + 9 * (size_t)i;
-        unsigned int bin = meshfix__bin(meshfix__centroid(c, axis), clow[axis], scale);
-        bin_count[bin]++;
-        meshfix__grow_box(bin_low[bin], bin_high[bin], c);
-        meshfix__grow_box(bin_low[bin], bin_high[bin], c + 3);
-        meshfix__grow_box(bin_low[bin], bin_high[bin], c + 6);
-    }
-    best_cost = 1e38f;
-    for (j = 1; j < MESHFIX__BINS; ++j) {
-        float l_low[3] = {1e30f, 1e30f, 1e30f}, l_high[3] = {-1e30f, -1e30f, -1e30f};
-        float r_low[3] = {1e30f, 1e30f, 1e30f}, r_high[3] = {-1e30f, -1e30f, -1e30f}, cost;
-        unsigned int nl = 0, nr = 0, q;
-        for (q = 0; q < MESHFIX__BINS; ++q) {
-            if (bin_count[q] == 0)
+        axis = r->centroids[3 + k] - r->centroids[k] > r->centroids[3 + axis] - r->centroids[axis] ? k : axis;
+    if (r->centroids[3 + axis] > r->centroids[axis]) {
+        scale = (double)MESHFIX__BINS / ((double)r->centroids[3 + axis] - r->centroids[axis]);
+        for (j = 0; j < MESHFIX__BINS; ++j)
+            meshfix__empty_range(&bins[j]);
+        for (i = first; i < first + count; ++i) {
+            const float *c = b->corners + 9 * (size_t)i;
+            meshfix__range_add_slot(&bins[meshfix__bin(c[MESHFIX__SLOT_CENTROID + axis], r->centroids[axis], scale)],
+                                    c);
+        }
+        /* below[j]: bins 0 .. j - 1; the sweep back gathers the rest */
+        meshfix__empty_range(&below[0]);
+        for (j = 1; j < MESHFIX__BINS; ++j) {
+            below[j] = below[j - 1];
+            meshfix__range_add_range(&below[j], &bins[j - 1]);
+        }
+        meshfix__empty_range(right);
+        for (j = MESHFIX__BINS - 1; j > 0; --j) {
+            float cost;
+            meshfix__range_add_range(right, &bins[j]);
+            if (below[j].count == 0 || right->count == 0)
                 continue;
-            if (q < j) {
-                nl += bin_count[q];
-                meshfix__grow_box(l_low, l_high, bin_low[q]);
-                meshfix__grow_box(l_low, l_high, bin_high[q]);
-            } else {
-                nr += bin_count[q];
-                meshfix__grow_box(r_low, r_high, bin_low[q]);
-                meshfix__grow_box(r_low, r_high, bin_high[q]);
+            cost = meshfix__box_area(below[j].box, below[j].box + 3) * (float)below[j].count +
+                   meshfix__box_area(right->box, right->box + 3) * (float)right->count;
+            /* <= keeps the lowest of equal splits, as a forward search with < would */
+            if (cost <= best_cost) {
+                best_cost = cost;
+                best = j;
             }
         }
-        if (nl == 0 || nr == 0)
-            continue;
-        cost = meshfix__box_area(l_low, l_high) * (float)nl + meshfix__box_area(r_low, r_high) * (float)nr;
-        if (cost < best_cost) {
-            best_cost = cost;
-            best = j;
+        if (best != 0) {
+            *left = below[best];
+            meshfix__empty_range(right);
+            for (j = best; j < MESHFIX__BINS; ++j)
+                meshfix__range_add_range(right, &bins[j]);
+            return meshfix__partition(b, first, count, axis, r->centroids[axis], scale, best);
         }
     }
-    if (best == 0)
-        return count / 2;
-    /* partition in place: slots whose bin is below `best` go left */
-    {
-        unsigned int lo = first, hi = first + count;
-        while (lo < hi) {
-            float *c = b->corners + 9 * (size_t)lo;
-            unsigned int bin = meshfix__bin(meshfix__centroid(c, axis), clow[axis], scale);
-            if (bin < best) {
-                lo++;
-            } else {
-                float tmp[9];
-                unsigned int id = b->order[lo];
-                hi--;
-                MESHFIX_MEMCPY(tmp, c, sizeof(tmp));
-                MESHFIX_MEMCPY(c, b->corners + 9 * (size_t)hi, sizeof(tmp));
-                MESHFIX_MEMCPY(b->corners + 9 * (size_t)hi, tmp, sizeof(tmp));
-                b->order[lo] = b->order[hi];
-                b->order[hi] = id;
-            }
-        }
-        left = lo - first;
-    }
-    return left;
+    /* all centroids in one point, or in one bin: halve by slot */
+    half = count / 2;
+    meshfix__fit_range(b, first, half, left);
+    meshfix__fit_range(b, first + half, count - half, right);
+    return half;
 }
 
-MESHFIX__PRIVATE void meshfix__fit_node(meshfix__bvh *b, meshfix__bvh_node *n, unsigned int first, unsigned int count)
+MESHFIX__PRIVATE void meshfix__set_node(meshfix__bvh_node *n, unsigned int first, const meshfix__range *r)
 {
-    unsigned int i;
-    int k;
-    for (k = 0; k < 3; ++k)
-        n->bounds[k] = 1e30f, n->bounds[3 + k] = -1e30f;
-    for (i = first; i < first + count; ++i) {
-        const float *c = b->corners + 9 * (size_t)i;
-        meshfix__grow_box(n->bounds, n->bounds + 3, c);
-        meshfix__grow_box(n->bounds, n->bounds + 3, c + 3);
-        meshfix__grow_box(n->bounds, n->bounds + 3, c + 6);
-    }
+    MESHFIX_MEMCPY(n->bounds, r->box, sizeof(n->bounds));
+    n->first = first;
+    n->count = r->count;
 }
 
 /* Builds the tree over the triangles with a finite, non-zero area (the
@@ -1599,6 +1651,7 @@ MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m,
                                        int (*keep)(const meshfix__mesh *m, unsigned int t))
 {
     unsigned int t, n = 0, stack[64], depth = 0;
+    meshfix__range ranges[64], whole;
     int k;
     MESHFIX_MEMSET(b, 0, sizeof(*b));
     /* corners of slot i: corners[9 * i ...] */
@@ -1610,45 +1663,47 @@ MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m,
     if (b->order == NULL || b->corners == NULL || b->nodes == NULL)
         return 0;
     for (t = 0; t < m->triangle_count; ++t) {
-        unsigned int c, sorted[3];
+        float corners[9], *slot = b->corners + 9 * (size_t)b->count;
         if (!keep(m, t))
             continue;
-        /* corners by vertex id, not by winding: a hit (and its rounding)
-           must not change when the triangle is flipped */
-        meshfix__sorted_triangle(m, t, sorted);
-        for (c = 0; c < 3; ++c)
-            MESHFIX_MEMCPY(b->corners + 9 * (size_t)b->count + 3 * c, meshfix__position(m, sorted[c]),
-                           3 * sizeof(float));
+        meshfix__load_corners(m, t, corners);
+        MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
+        MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
+        meshfix__grow_box(slot, slot + 3, corners + 3);
+        meshfix__grow_box(slot, slot + 3, corners + 6);
+        for (k = 0; k < 3; ++k)
+            slot[MESHFIX__SLOT_CENTROID + k] = meshfix__centroid(corners, k);
         b->order[b->count++] = t;
     }
+    meshfix__fit_range(b, 0, n, &whole);
     b->node_count = 1;
-    b->nodes[0].first = 0;
-    b->nodes[0].count = n;
-    meshfix__fit_node(b, &b->nodes[0], 0, n);
+    meshfix__set_node(&b->nodes[0], 0, &whole);
     for (k = 0; k < 3; ++k)
-        b->low[k] = b->nodes[0].bounds[k], b->high[k] = b->nodes[0].bounds[3 + k];
+        b->low[k] = whole.box[k], b->high[k] = whole.box[3 + k];
     b->diagonal = n == 0 ? 0.0 : MESHFIX_SQRT((double)(b->high[0] - b->low[0]) * (b->high[0] - b->low[0]) +
                                                (double)(b->high[1] - b->low[1]) * (b->high[1] - b->low[1]) +
                                                (double)(b->high[2] - b->low[2]) * (b->high[2] - b->low[2]));
-    stack[depth++] = 0;
+    stack[depth] = 0;
+    ranges[depth++] = whole;
     while (depth > 0) {
-        meshfix__bvh_node *node = &b->nodes[stack[--depth]];
-        unsigned int first = node->first, count = node->count, left;
-        left = depth + 2 < 64 ? meshfix__split(b, first, count) : 0;
-        if (left == 0 || left == count)
+        meshfix__range r = ranges[--depth], left, right;
+        meshfix__bvh_node *node = &b->nodes[stack[depth]];
+        unsigned int first = node->first, split;
+        split = depth + 2 < 64 ? meshfix__split(b, first, &r, &left, &right) : 0;
+        if (split == 0 || split == r.count)
             continue;
         node->first = b->node_count;
         node->count = 0;
-        b->nodes[b->node_count].first = first;
-        b->nodes[b->node_count].count = left;
-        b->nodes[b->node_count + 1].first = first + left;
-        b->nodes[b->node_count + 1].count = count - left;
-        meshfix__fit_node(b, &b->nodes[b->node_count], first, left);
-        meshfix__fit_node(b, &b->nodes[b->node_count + 1], first + left, count - left);
-        stack[depth++] = b->node_count;
-        stack[depth++] = b->node_count + 1;
+        meshfix__set_node(&b->nodes[b->node_count], first, &left);
+        meshfix__set_node(&b->nodes[b->node_count + 1], first + split, &right);
+        stack[depth] = b->node_count;
+        ranges[depth++] = left;
+        stack[depth] = b->node_count + 1;
+        ranges[depth++] = right;
         b->node_count += 2;
     }
+    for (t = 0; t < n; ++t)
+        meshfix__load_corners(m, b->order[t], b->corners + 9 * (size_t)t);
     return 1;
 }
 
