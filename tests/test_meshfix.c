@@ -212,6 +212,40 @@ static void test_mobius_strip(void)
     mio_free(&g);
 }
 
+/* The seam left in a non-orientable strip depends on its topology alone:
+   repaired from any scramble, every triangle comes out wound like the first
+   repair, or every one reversed (the policy's turn). */
+static void test_mobius_seam_independent_of_winding(void)
+{
+    mio_mesh g;
+    meshfix_report r;
+    unsigned int *clean, *first = NULL, *out;
+    size_t t, triangles;
+    unsigned long long seed;
+    CHECK(gen_mobius(&g, 60));
+    triangles = g.index_count / 3;
+    clean = copy_indices(g.indices, g.index_count);
+    for (seed = 1; seed <= 6; ++seed) {
+        size_t same = 0;
+        memcpy(g.indices, clean, g.index_count * sizeof(unsigned int));
+        gen_flip_random(&g, seed / 7.0, seed, NULL);
+        out = orient_checked(g.indices, g.index_count, NULL, g.vertex_count, 12, MESHFIX_POLICY_SEED, &r);
+        CHECK_EQ(r.components_non_orientable, 1);
+        CHECK(r.edges_inconsistent >= 1);
+        if (first == NULL) {
+            first = out;
+            continue;
+        }
+        for (t = 0; t < triangles; ++t)
+            same += (size_t)(out[3 * t + 1] == first[3 * t + 1]);
+        CHECK(same == 0 || same == triangles);
+        free(out);
+    }
+    free(first);
+    free(clean);
+    mio_free(&g);
+}
+
 static void test_two_shells(void)
 {
     mio_mesh a, b;
@@ -844,6 +878,7 @@ static const test_case tests[] = {
     {"cube with 1 and 5 flipped", test_cube_one_and_five_flipped},
     {"open sheet", test_open_sheet},
     {"moebius strip", test_mobius_strip},
+    {"moebius seam independent of input winding", test_mobius_seam_independent_of_winding},
     {"two shells", test_two_shells},
     {"non-manifold fan", test_non_manifold_fan},
     {"bow-tie vertex", test_bow_tie_vertex},
