@@ -1128,6 +1128,9 @@ MESHFIX__PRIVATE void meshfix__number_patches(meshfix__mesh *m)
     m->patch_count = patch;
 }
 
+/* The flood fill: every triangle joined to its lower neighbours in
+   triangle order, then the classes numbered. Degenerate triangles have no
+   edges and no patch. */
 MESHFIX__PRIVATE void meshfix__find_patches(meshfix__mesh *m)
 {
     unsigned int t, triangles = (unsigned int)m->triangle_count;
