@@ -1128,17 +1128,20 @@ MESHFIX__PRIVATE void meshfix__number_patches(meshfix__mesh *m)
     m->patch_count = patch;
 }
 
-/* The flood fill: every triangle joined to its lower neighbours in
-   triangle order, then the classes numbered. Degenerate triangles have no
-   edges and no patch. */
+/* The flood fill: every triangle becomes a class of its own and joins its
+   lower neighbours (already set up), in triangle order; then the classes
+   are numbered. Degenerate triangles have no edges and no patch. */
 MESHFIX__PRIVATE void meshfix__find_patches(meshfix__mesh *m)
 {
     unsigned int t, triangles = (unsigned int)m->triangle_count;
-    for (t = 0; t < triangles; ++t)
-        m->tri_patch[t] = (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE) ? MESHFIX__NONE : t;
-    for (t = 0; t < triangles; ++t)
-        if (m->tri_patch[t] != MESHFIX__NONE)
-            meshfix__join_lower_neighbours(m, t);
+    for (t = 0; t < triangles; ++t) {
+        if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE) {
+            m->tri_patch[t] = MESHFIX__NONE;
+            continue;
+        }
+        m->tri_patch[t] = t;
+        meshfix__join_lower_neighbours(m, t);
+    }
     meshfix__number_patches(m);
 }
 

@@ -60,6 +60,17 @@ static void peak_free(void *p, void *user)
     std::free(block);
 }
 
+// Options that count every allocation of a call into `counter`.
+static meshfix_options counting_options(PeakAllocator *counter)
+{
+    meshfix_options options;
+    std::memset(&options, 0, sizeof(options));
+    options.allocator.alloc_fn = peak_alloc;
+    options.allocator.free_fn = peak_free;
+    options.allocator.user_data = counter;
+    return options;
+}
+
 static double seconds_since(std::chrono::steady_clock::time_point start)
 {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -237,11 +248,7 @@ static int bench_visibility(bool quick)
     size_t triangles = cutm.index_count / 3;
     std::vector<unsigned int> out(cutm.index_count);
     PeakAllocator counter;
-    meshfix_options options;
-    std::memset(&options, 0, sizeof(options));
-    options.allocator.alloc_fn = peak_alloc;
-    options.allocator.free_fn = peak_free;
-    options.allocator.user_data = &counter;
+    meshfix_options options = counting_options(&counter);
     meshfix_report report;
     int status = 0;
     options.policy = MESHFIX_POLICY_MAJORITY;
@@ -308,11 +315,7 @@ int main(int argc, char **argv)
         gen_flip_random(&sg, 0.3, 5, nullptr);
 
         PeakAllocator counter;
-        meshfix_options options;
-        std::memset(&options, 0, sizeof(options));
-        options.allocator.alloc_fn = peak_alloc;
-        options.allocator.free_fn = peak_free;
-        options.allocator.user_data = &counter;
+        meshfix_options options = counting_options(&counter);
         meshfix_report report;
 
         auto repair = [&](const float *positions, meshfix_policy policy, meshfix_report *r) {
