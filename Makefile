@@ -19,32 +19,23 @@ $(B)/meshfix: examples/meshfix.c $(HEADERS) | $(B)
 $(B)/demo_mesh: examples/demo_mesh.c $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/demo_mesh.c -lm
 
-$(B)/test_meshfix: tests/test_meshfix.c $(HEADERS) | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_meshfix.c -lm
+# Each C suite is built four ways: plain, with the sanitizers, with
+# -O3 -ffast-math (what engines build with) and, where a 32-bit toolchain
+# is installed (tests/run_all.sh checks), with -m32.
+SUITES = test_meshfix test_sdf test_visibility test_hostile
+FAST = -O3 -ffast-math -g
 
-$(B)/test_meshfix_asan: tests/test_meshfix.c $(HEADERS) | $(B)
-	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ tests/test_meshfix.c -lm
+$(B)/test_%: tests/test_%.c tests/check.h $(HEADERS) | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
 
-$(B)/sdf_demo: examples/sdf_demo.c $(HEADERS) | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/sdf_demo.c -lm
+$(B)/test_%_asan: tests/test_%.c tests/check.h $(HEADERS) | $(B)
+	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ $< -lm
 
-$(B)/test_sdf: tests/test_sdf.c $(HEADERS) | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_sdf.c -lm
+$(B)/test_%_fast: tests/test_%.c tests/check.h $(HEADERS) | $(B)
+	$(CC) -std=c99 $(FAST) $(WARN) -o $@ $< -lm
 
-$(B)/test_sdf_asan: tests/test_sdf.c $(HEADERS) | $(B)
-	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ tests/test_sdf.c -lm
-
-$(B)/test_visibility: tests/test_visibility.c $(HEADERS) | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_visibility.c -lm
-
-$(B)/test_visibility_asan: tests/test_visibility.c $(HEADERS) | $(B)
-	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ tests/test_visibility.c -lm
-
-$(B)/test_hostile: tests/test_hostile.c $(HEADERS) | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_hostile.c -lm
-
-$(B)/test_hostile_asan: tests/test_hostile.c $(HEADERS) | $(B)
-	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ tests/test_hostile.c -lm
+$(B)/test_%_m32: tests/test_%.c tests/check.h $(HEADERS) | $(B)
+	$(CC) -m32 -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
 
 $(B)/test_openmesh: tests/test_openmesh.cpp $(HEADERS) | $(B)
 	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -o $@ tests/test_openmesh.cpp $(OPENMESH)
@@ -63,9 +54,9 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@echo
 	@echo "wrote $(B)/demo_fixed.obj and $(B)/demo_marked.ply (flipped faces red; open it in MeshLab or Blender)"
 
-test: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(B)/test_meshfix $(B)/test_meshfix_asan $(B)/test_sdf $(B)/test_sdf_asan \
-      $(B)/test_visibility $(B)/test_visibility_asan $(B)/test_hostile $(B)/test_hostile_asan $(B)/test_openmesh
-	@CC="$(CC)" CXX="$(CXX)" bash tests/run_all.sh
+test: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES:%=$(B)/%_asan) $(SUITES:%=$(B)/%_fast) \
+      $(B)/test_openmesh
+	@CC="$(CC)" CXX="$(CXX)" MAKE="$(MAKE)" bash tests/run_all.sh
 
 bench: $(B)/bench
 	$(B)/bench

@@ -443,7 +443,8 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #ifndef MESHFIX_MEMCPY
 #define MESHFIX_MEMCPY(dst, src, size) memcpy((dst), (src), (size))
 #endif
-#if !defined(MESHFIX_SQRT) || !defined(MESHFIX_FLOOR) || !defined(MESHFIX_SIN) || !defined(MESHFIX_COS)
+#if !defined(MESHFIX_SQRT) || !defined(MESHFIX_FLOOR) || !defined(MESHFIX_SIN) || !defined(MESHFIX_COS) || \
+    !defined(MESHFIX_FABS)
 #include <math.h>
 #endif
 #ifndef MESHFIX_SIN
@@ -457,6 +458,9 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #endif
 #ifndef MESHFIX_FLOOR
 #define MESHFIX_FLOOR(x) floor(x)
+#endif
+#ifndef MESHFIX_FABS
+#define MESHFIX_FABS(x) fabs(x)
 #endif
 #if !defined(MESHFIX_DEBUG) && !defined(NDEBUG)
 #define MESHFIX_DEBUG 1
@@ -487,6 +491,7 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #define MESHFIX__TRI_OPEN       512u /* has a boundary edge */
 #define MESHFIX__TRI_NOT_MANIFOLD 1024u /* has an edge shared by three or more */
 #define MESHFIX__TRI_SEAM      2048u /* closes a cycle of contradicting edges */
+#define MESHFIX__TRI_NON_FINITE 4096u /* a corner is NaN or infinite: no geometry */
 /* patch bits */
 #define MESHFIX__PATCH_OPEN           1u /* a boundary edge or an odd share of a ring */
 #define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
@@ -526,7 +531,9 @@ MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t eleme
 MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count)
 {
     size_t total = 0, half_edges;
-    if (triangle_count > MESHFIX__MAX_INDEX_COUNT / 3 || vertex_range > MESHFIX__MAX_VERTEX_COUNT)
+    /* vertex_range + 1 must not wrap where size_t has 32 bits */
+    if (triangle_count > MESHFIX__MAX_INDEX_COUNT / 3 || vertex_range >= ((size_t)-1) ||
+        vertex_range > MESHFIX__MAX_VERTEX_COUNT)
         return 0;
     half_edges = triangle_count * 3;
     return meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
@@ -569,9 +576,25 @@ typedef struct meshfix__mesh {
     float *confidence;              /* per patch, from the geometric policies; may be NULL */
 } meshfix__mesh;
 
+/* The last vertex's x y z (12 bytes at (vertex_count - 1) * stride) lie
+   within an address range that size_t can describe. */
+MESHFIX__PRIVATE int meshfix__vertices_addressable(size_t vertex_count, size_t stride)
+{
+    size_t last;
+    if (vertex_count == 0)
+        return 1;
+    if (vertex_count - 1 > ((size_t)-1) / stride)
+        return 0;
+    last = (vertex_count - 1) * stride;
+    return last <= ((size_t)-1) - 3 * sizeof(float);
+}
+
+/* Every check that needs no index is made before any index is read: a
+   count the scratch plan cannot hold is refused without touching the
+   buffer it claims to describe. */
 MESHFIX__PRIVATE meshfix_result meshfix__validate(const unsigned int *indices, size_t index_count,
                                                   const float *positions, size_t vertex_count,
-                                                  size_t stride, size_t *vertex_range)
+                                                  size_t stride, size_t *vertex_range, meshfix__plan *plan)
 {
     size_t i;
     unsigned int highest = 0;
@@ -583,14 +606,20 @@ MESHFIX__PRIVATE meshfix_result meshfix__validate(const unsigned int *indices, s
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     if (positions != NULL && (stride < 3 * sizeof(float) || stride % sizeof(float) != 0))
         return MESHFIX_ERROR_INVALID_ARGUMENT;
-    if (positions != NULL && vertex_count > 0 && (vertex_count - 1) > ((size_t)-1) / stride)
+    if (positions != NULL && !meshfix__vertices_addressable(vertex_count, stride))
+        return MESHFIX_ERROR_TOO_LARGE;
+    if (index_count == 0) {
+        *vertex_range = 0;
+        return MESHFIX_OK;
+    }
+    if (!meshfix__make_plan(plan, 0, index_count / 3))
         return MESHFIX_ERROR_TOO_LARGE;
     for (i = 0; i < index_count; ++i)
         highest = indices[i] > highest ? indices[i] : highest;
-    if (index_count != 0 && (size_t)highest >= vertex_count)
+    if ((size_t)highest >= vertex_count)
         return MESHFIX_ERROR_INDEX_OUT_OF_RANGE;
-    *vertex_range = index_count != 0 ? (size_t)highest + 1 : 0;
-    return MESHFIX_OK;
+    *vertex_range = (size_t)highest + 1;
+    return meshfix__make_plan(plan, *vertex_range, index_count / 3) ? MESHFIX_OK : MESHFIX_ERROR_TOO_LARGE;
 }
 
 MESHFIX__PRIVATE const float *meshfix__position(const meshfix__mesh *m, unsigned int vertex)
@@ -598,37 +627,121 @@ MESHFIX__PRIVATE const float *meshfix__position(const meshfix__mesh *m, unsigned
     return (const float *)(const void *)(m->positions + (size_t)vertex * m->stride);
 }
 
+/* On the bit pattern, not by arithmetic: -ffast-math and -Ofast let the
+   compiler assume that no value is NaN or infinite and delete `x != x`
+   style tests, which engines build with. */
 MESHFIX__PRIVATE int meshfix__is_finite(float x)
 {
-    return (x - x) == 0.0f; /* NaN and infinities give NaN */
+    unsigned int bits;
+    MESHFIX_MEMCPY(&bits, &x, sizeof(bits));
+    return (bits & 0x7F800000u) != 0x7F800000u;
 }
 
+MESHFIX__PRIVATE int meshfix__is_finite_point(const float *p)
+{
+    return meshfix__is_finite(p[0]) && meshfix__is_finite(p[1]) && meshfix__is_finite(p[2]);
+}
+
+/* Marks triangles that repeat a vertex (no topology) and, with positions,
+   triangles with a NaN or infinite corner (no geometry: every geometric
+   stage skips them, so no NaN reaches a comparison, a bin or a loop
+   bound). Returns the degenerate count. */
 MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
 {
     size_t t, count = 0;
     for (t = 0; t < m->triangle_count; ++t) {
         const unsigned int *v = m->indices + 3 * t;
         int degenerate = v[0] == v[1] || v[1] == v[2] || v[0] == v[2];
-        m->tri_bits[t] = (unsigned short)(degenerate ? MESHFIX__TRI_DEGENERATE : 0);
+        unsigned int bits = degenerate ? MESHFIX__TRI_DEGENERATE : 0u;
+        if (m->positions != NULL && !(meshfix__is_finite_point(meshfix__position(m, v[0])) &&
+                                      meshfix__is_finite_point(meshfix__position(m, v[1])) &&
+                                      meshfix__is_finite_point(meshfix__position(m, v[2]))))
+            bits |= MESHFIX__TRI_NON_FINITE;
+        m->tri_bits[t] = (unsigned short)bits;
         count += (size_t)degenerate;
     }
     return count;
 }
 
+/* A triangle that can take part in geometry: distinct, finite corners. */
+MESHFIX__PRIVATE int meshfix__has_geometry(const meshfix__mesh *m, unsigned int t)
+{
+    return !(m->tri_bits[t] & (MESHFIX__TRI_DEGENERATE | MESHFIX__TRI_NON_FINITE));
+}
+
+/* ===== >>sort ===== */
+
+/* Sorts ids by a strict total order the caller gives (ties broken by id,
+   so the result does not depend on the algorithm): insertion sort for a
+   few, heapsort in place above that. Crafted input that piles thousands
+   of ids into one hash bucket or one vertex costs O(k log k), never
+   O(k^2). */
+typedef int (*meshfix__before_fn)(const void *context, unsigned int a, unsigned int b);
+
+MESHFIX__PRIVATE void meshfix__sift_down(unsigned int *ids, size_t root, size_t n, meshfix__before_fn before,
+                                         const void *context)
+{
+    for (;;) {
+        size_t child = 2 * root + 1;
+        unsigned int x;
+        if (child >= n)
+            return;
+        if (child + 1 < n && before(context, ids[child], ids[child + 1]))
+            child++;
+        if (!before(context, ids[root], ids[child]))
+            return;
+        x = ids[root];
+        ids[root] = ids[child];
+        ids[child] = x;
+        root = child;
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__sort_ids(unsigned int *ids, size_t n, meshfix__before_fn before, const void *context)
+{
+    size_t i, j;
+    if (n <= 16) {
+        for (i = 1; i < n; ++i) {
+            unsigned int x = ids[i];
+            for (j = i; j > 0 && before(context, x, ids[j - 1]); --j)
+                ids[j] = ids[j - 1];
+            ids[j] = x;
+        }
+        return;
+    }
+    for (i = n / 2; i-- > 0;)
+        meshfix__sift_down(ids, i, n, before, context);
+    for (i = n - 1; i > 0; --i) {
+        unsigned int x = ids[0];
+        ids[0] = ids[i];
+        ids[i] = x;
+        meshfix__sift_down(ids, 0, i, before, context);
+    }
+}
+
 /* ===== >>weld ===== */
 
-/* Welding snaps each vertex to the lowest-index earlier vertex within the
-   tolerance, found in a hash grid of cells as wide as the tolerance (the
-   27 cells around a vertex hold every vertex that close). Only
-   representatives enter the grid, so clusters never chain, and the result
-   depends only on positions and their order. */
+/* Welding snaps each vertex to the lowest-index earlier representative
+   within the tolerance. Vertices are grouped by cell (as wide as the
+   tolerance, or the exact position at tolerance 0): hashed into buckets
+   by a counting sort, each bucket sorted by (cell, vertex), so finding a
+   cell is a hash and a binary search. Hash collisions, accidental or
+   crafted, cost a logarithm, not a scan. Only representatives are
+   searched, and they lie more than the tolerance apart, so a cell holds
+   a handful of them (27 cells around a vertex hold every vertex that
+   close). Clusters never chain, and the result depends only on positions
+   and their order. */
 
 typedef struct meshfix__welder {
     const char *positions;
     size_t stride;
     double cell;             /* 0: exact equality */
-    unsigned int *slots;
-    size_t mask;
+    size_t mask;             /* buckets - 1 */
+    unsigned int *bucket_end; /* per bucket: end of its run in `order` */
+    unsigned int *order;     /* vertices bucket by bucket, each sorted by (cell, vertex) */
+    unsigned int *home;      /* per vertex: where its cell's run starts in `order` */
+    unsigned int *rep_head;  /* per run start: the cell's latest representative */
+    unsigned int *rep_next;  /* per representative: the previous one in its cell */
 } meshfix__welder;
 
 MESHFIX__PRIVATE void meshfix__weld_load(const meshfix__welder *w, size_t v, float p[3])
@@ -646,6 +759,13 @@ MESHFIX__PRIVATE void meshfix__weld_cell(const meshfix__welder *w, const float p
         cell[k] = w->cell > 0 ? MESHFIX_FLOOR((double)p[k] / w->cell) : (double)p[k];
 }
 
+MESHFIX__PRIVATE void meshfix__vertex_cell(const meshfix__welder *w, unsigned int v, double cell[3])
+{
+    float p[3];
+    meshfix__weld_load(w, v, p);
+    meshfix__weld_cell(w, p, cell);
+}
+
 MESHFIX__PRIVATE size_t meshfix__weld_hash(const double cell[3], size_t mask)
 {
     unsigned int h = 2166136261u, bits[2];
@@ -661,22 +781,98 @@ MESHFIX__PRIVATE size_t meshfix__weld_hash(const double cell[3], size_t mask)
     return (size_t)h & mask;
 }
 
-/* The lowest representative in cell `c` within the tolerance of p. */
-MESHFIX__PRIVATE unsigned int meshfix__weld_find(const meshfix__welder *w, const double c[3], const float p[3],
-                                                double tolerance_squared, unsigned int best)
+/* -1, 0, 1 as cell a is below, at or above cell b (x, then y, then z) */
+MESHFIX__PRIVATE int meshfix__compare_cells(const double a[3], const double b[3])
 {
-    size_t i;
-    for (i = meshfix__weld_hash(c, w->mask); w->slots[i] != MESHFIX__NONE; i = (i + 1) & w->mask) {
-        unsigned int r = w->slots[i];
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (a[k] != b[k])
+            return a[k] < b[k] ? -1 : 1;
+    return 0;
+}
+
+MESHFIX__PRIVATE int meshfix__weld_before(const void *context, unsigned int a, unsigned int b)
+{
+    const meshfix__welder *w = (const meshfix__welder *)context;
+    double ca[3], cb[3];
+    int order;
+    meshfix__vertex_cell(w, a, ca);
+    meshfix__vertex_cell(w, b, cb);
+    order = meshfix__compare_cells(ca, cb);
+    return order < 0 || (order == 0 && a < b);
+}
+
+/* Groups the vertices: counting sort by bucket (vertex order within a
+   bucket), each bucket sorted by cell, and every vertex's run found. */
+MESHFIX__PRIVATE void meshfix__weld_group(meshfix__welder *w, size_t vertex_count)
+{
+    size_t v, b, begin = 0, buckets = w->mask + 1;
+    unsigned int sum = 0, i;
+    double previous[3];
+    MESHFIX_MEMSET(w->bucket_end, 0, buckets * sizeof(unsigned int));
+    for (v = 0; v < vertex_count; ++v) {
+        double c[3];
+        meshfix__vertex_cell(w, (unsigned int)v, c);
+        w->home[v] = (unsigned int)meshfix__weld_hash(c, w->mask);
+        w->bucket_end[w->home[v]]++;
+    }
+    for (b = 0; b < buckets; ++b) {
+        unsigned int n = w->bucket_end[b];
+        w->bucket_end[b] = sum;
+        sum += n;
+    }
+    for (v = 0; v < vertex_count; ++v)
+        w->order[w->bucket_end[w->home[v]]++] = (unsigned int)v;
+    for (b = 0; b < buckets; begin = w->bucket_end[b++])
+        meshfix__sort_ids(w->order + begin, w->bucket_end[b] - begin, meshfix__weld_before, w);
+    /* runs of one cell: each vertex learns where its run starts */
+    previous[0] = previous[1] = previous[2] = 0.0;
+    for (i = 0; i < (unsigned int)vertex_count; ++i) {
+        double c[3];
+        meshfix__vertex_cell(w, w->order[i], c);
+        if (i == 0 || meshfix__compare_cells(c, previous) != 0)
+            w->rep_head[i] = i; /* a run starts here; rep_head is set up below */
+        else
+            w->rep_head[i] = w->rep_head[i - 1];
+        w->home[w->order[i]] = w->rep_head[i];
+        previous[0] = c[0], previous[1] = c[1], previous[2] = c[2];
+    }
+    for (i = 0; i < (unsigned int)vertex_count; ++i)
+        w->rep_head[i] = MESHFIX__NONE;
+}
+
+/* Where the run of `cell` starts in `order`, or NONE: its bucket, then a
+   binary search in it. */
+MESHFIX__PRIVATE unsigned int meshfix__weld_find_cell(const meshfix__welder *w, const double cell[3])
+{
+    size_t b = meshfix__weld_hash(cell, w->mask);
+    unsigned int lo = b == 0 ? 0 : w->bucket_end[b - 1], hi = w->bucket_end[b];
+    double c[3];
+    while (lo < hi) {
+        unsigned int mid = lo + (hi - lo) / 2;
+        meshfix__vertex_cell(w, w->order[mid], c);
+        if (meshfix__compare_cells(c, cell) < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    if (lo == w->bucket_end[b])
+        return MESHFIX__NONE;
+    meshfix__vertex_cell(w, w->order[lo], c);
+    return meshfix__compare_cells(c, cell) == 0 ? lo : MESHFIX__NONE;
+}
+
+/* The lowest representative in the run at `run` within the tolerance of p. */
+MESHFIX__PRIVATE unsigned int meshfix__weld_nearest(const meshfix__welder *w, unsigned int run, const float p[3],
+                                                   double tolerance_squared, unsigned int best)
+{
+    unsigned int r;
+    for (r = w->rep_head[run]; r != MESHFIX__NONE; r = w->rep_next[r]) {
         float q[3];
-        double other[3], d;
+        double dx, dy, dz;
         meshfix__weld_load(w, r, q);
-        meshfix__weld_cell(w, q, other);
-        if (other[0] != c[0] || other[1] != c[1] || other[2] != c[2] || r >= best)
-            continue;
-        d = ((double)p[0] - q[0]) * ((double)p[0] - q[0]) + ((double)p[1] - q[1]) * ((double)p[1] - q[1]) +
-            ((double)p[2] - q[2]) * ((double)p[2] - q[2]);
-        if (w->cell > 0 ? d <= tolerance_squared : (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]))
+        dx = (double)p[0] - (double)q[0], dy = (double)p[1] - (double)q[1], dz = (double)p[2] - (double)q[2];
+        if (dx * dx + dy * dy + dz * dz <= tolerance_squared && r < best)
             best = r;
     }
     return best;
@@ -687,20 +883,27 @@ MESHFIX__PRIVATE size_t meshfix__weld_run(meshfix__welder *w, size_t vertex_coun
 {
     size_t v, unique = 0;
     double tolerance_squared = tolerance * tolerance;
-    int reach = w->cell > 0 ? 1 : 0;
+    meshfix__weld_group(w, vertex_count);
     for (v = 0; v < vertex_count; ++v) {
         float p[3];
         double c[3], n[3];
-        unsigned int best = MESHFIX__NONE;
+        unsigned int best = MESHFIX__NONE, run;
         int dx, dy, dz;
-        size_t i;
+        if (w->cell == 0) {
+            /* exact: the first of its run is the lowest vertex at that position */
+            remap[v] = w->order[w->home[v]];
+            unique += (size_t)(remap[v] == v);
+            continue;
+        }
         meshfix__weld_load(w, v, p);
         meshfix__weld_cell(w, p, c);
-        for (dx = -reach; dx <= reach; ++dx)
-            for (dy = -reach; dy <= reach; ++dy)
-                for (dz = -reach; dz <= reach; ++dz) {
+        for (dx = -1; dx <= 1; ++dx)
+            for (dy = -1; dy <= 1; ++dy)
+                for (dz = -1; dz <= 1; ++dz) {
                     n[0] = c[0] + dx, n[1] = c[1] + dy, n[2] = c[2] + dz;
-                    best = meshfix__weld_find(w, n, p, tolerance_squared, best);
+                    run = meshfix__weld_find_cell(w, n);
+                    if (run != MESHFIX__NONE)
+                        best = meshfix__weld_nearest(w, run, p, tolerance_squared, best);
                 }
         if (best != MESHFIX__NONE) {
             remap[v] = best;
@@ -708,9 +911,8 @@ MESHFIX__PRIVATE size_t meshfix__weld_run(meshfix__welder *w, size_t vertex_coun
         }
         remap[v] = (unsigned int)v;
         unique++;
-        for (i = meshfix__weld_hash(c, w->mask); w->slots[i] != MESHFIX__NONE; i = (i + 1) & w->mask) {
-        }
-        w->slots[i] = (unsigned int)v;
+        w->rep_next[v] = w->rep_head[w->home[v]];
+        w->rep_head[w->home[v]] = (unsigned int)v;
     }
     return unique;
 }
@@ -723,28 +925,11 @@ typedef struct meshfix__edge_counts {
 
 /* While edges are grouped, mate[h] holds the higher vertex of h's edge:
    each half-edge is read from there until its own bucket links it. */
-MESHFIX__PRIVATE int meshfix__half_edge_less(const meshfix__mesh *m, unsigned int a, unsigned int b)
+MESHFIX__PRIVATE int meshfix__half_edge_before(const void *context, unsigned int a, unsigned int b)
 {
+    const meshfix__mesh *m = (const meshfix__mesh *)context;
     unsigned int ka = m->mate[a], kb = m->mate[b];
     return ka < kb || (ka == kb && a < b);
-}
-
-MESHFIX__PRIVATE void meshfix__sift_down(const meshfix__mesh *m, unsigned int *e, size_t root, size_t n)
-{
-    for (;;) {
-        size_t child = 2 * root + 1;
-        unsigned int x;
-        if (child >= n)
-            return;
-        if (child + 1 < n && meshfix__half_edge_less(m, e[child], e[child + 1]))
-            child++;
-        if (!meshfix__half_edge_less(m, e[root], e[child]))
-            return;
-        x = e[root];
-        e[root] = e[child];
-        e[child] = x;
-        root = child;
-    }
 }
 
 /* Links the half-edges of one undirected edge (a run of a sorted bucket):
@@ -800,14 +985,7 @@ MESHFIX__PRIVATE void meshfix__link_bucket(meshfix__mesh *m, unsigned int *ids, 
         }
         return;
     }
-    for (i = n / 2; i-- > 0;)
-        meshfix__sift_down(m, ids, i, n);
-    for (i = n - 1; i > 0; --i) {
-        unsigned int x = ids[0];
-        ids[0] = ids[i];
-        ids[i] = x;
-        meshfix__sift_down(m, ids, 0, i);
-    }
+    meshfix__sort_ids(ids, n, meshfix__half_edge_before, m);
     for (i = 0; i < n; i = j) {
         unsigned int high = m->mate[ids[i]];
         for (j = i + 1; j < n && m->mate[ids[j]] == high; ++j) {
@@ -889,14 +1067,6 @@ MESHFIX__PRIVATE void meshfix__sorted_triangle(const meshfix__mesh *m, size_t t,
     s[0] = a; s[1] = b; s[2] = c;
 }
 
-MESHFIX__PRIVATE unsigned int meshfix__hash_triple(const unsigned int s[3])
-{
-    unsigned int h = s[0] * 0x9E3779B1u;
-    h = (h ^ (h >> 15) ^ s[1]) * 0x85EBCA77u;
-    h = (h ^ (h >> 13) ^ s[2]) * 0xC2B2AE3Du;
-    return h ^ (h >> 16);
-}
-
 MESHFIX__PRIVATE unsigned int meshfix__apex(const meshfix__mesh *m, unsigned int h)
 {
     return m->indices[h % 3 == 0 ? h + 2 : h - 1];
@@ -907,52 +1077,49 @@ MESHFIX__PRIVATE void meshfix__mark_duplicate(meshfix__mesh *m, size_t t)
     m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | MESHFIX__TRI_DUPLICATE);
 }
 
-/* Triangles with the same vertex set share all three edges. If one of
-   those edges is manifold the two are its pair, with the same apex; if
-   none is, all three edges are non-manifold, which is rare, and those
-   triangles go through a table keyed by their sorted vertices (in the
-   free `work` buffer). The table only marks triangles; counts do not
-   depend on where anything landed in it. */
-MESHFIX__PRIVATE int meshfix__all_edges_non_manifold(const meshfix__mesh *m, size_t t)
+/* Triangles with the same vertex set share all three edges, among them
+   the edge of their two lowest vertices. If that edge is manifold the two
+   are its pair, with the same apex. If it is non-manifold, its ring is
+   sorted by apex: equal apexes in a row are copies. Each triangle is
+   looked at on one edge only, so the whole count is O(n log n) at worst
+   and needs no hash that crafted input could aim at. */
+MESHFIX__PRIVATE int meshfix__apex_before(const void *context, unsigned int a, unsigned int b)
 {
-    return meshfix__is_ring(m->mate[3 * t]) && meshfix__is_ring(m->mate[3 * t + 1]) &&
-           meshfix__is_ring(m->mate[3 * t + 2]);
+    const meshfix__mesh *m = (const meshfix__mesh *)context;
+    unsigned int x = meshfix__apex(m, a), y = meshfix__apex(m, b);
+    return x < y || (x == y && a < b);
+}
+
+/* The members of the ring ending at `last` that run the edge of their
+   triangle's two lowest vertices, into `out`; returns how many. */
+MESHFIX__PRIVATE size_t meshfix__lowest_edge_members(const meshfix__mesh *m, unsigned int last, unsigned int *out)
+{
+    unsigned int h = last, next = last % 3 == 2 ? last - 2 : last + 1;
+    unsigned int high = m->indices[h] < m->indices[next] ? m->indices[next] : m->indices[h];
+    size_t n = 0;
+    do {
+        h = m->mate[h] & ~MESHFIX__RING;
+        if (meshfix__apex(m, h) > high)
+            out[n++] = h;
+    } while (h != last);
+    return n;
 }
 
 MESHFIX__PRIVATE size_t meshfix__count_duplicates(meshfix__mesh *m)
 {
-    unsigned int *slots = m->work, h, half_edges = (unsigned int)(3 * m->triangle_count);
-    size_t size = 4, mask, t, count = 0, candidates = 0;
+    unsigned int *members = m->work, h, half_edges = (unsigned int)(3 * m->triangle_count);
+    size_t t, i, n, count = 0;
     for (h = 0; h < half_edges; ++h) {
         unsigned int g = m->mate[h];
         if (meshfix__is_mate(g) && h < g && meshfix__apex(m, h) == meshfix__apex(m, g))
             meshfix__mark_duplicate(m, g / 3);
-    }
-    for (t = 0; t < m->triangle_count; ++t)
-        candidates += (size_t)meshfix__all_edges_non_manifold(m, t);
-    /* at most two thirds full, and never more than the 3 per triangle of `work` */
-    while (size < candidates + candidates / 2)
-        size *= 2;
-    mask = size - 1;
-    if (candidates != 0)
-        MESHFIX_MEMSET(slots, 0xFF, size * sizeof(unsigned int));
-    for (t = 0; t < m->triangle_count && candidates != 0; ++t) {
-        unsigned int key[3], other[3];
-        size_t i;
-        if (!meshfix__all_edges_non_manifold(m, t))
+        if (!meshfix__is_ring_last(m, h))
             continue;
-        meshfix__sorted_triangle(m, t, key);
-        for (i = meshfix__hash_triple(key) & mask;; i = (i + 1) & mask) {
-            if (slots[i] == MESHFIX__NONE) {
-                slots[i] = (unsigned int)t;
-                break;
-            }
-            meshfix__sorted_triangle(m, slots[i], other);
-            if (other[0] == key[0] && other[1] == key[1] && other[2] == key[2]) {
-                meshfix__mark_duplicate(m, t);
-                break;
-            }
-        }
+        n = meshfix__lowest_edge_members(m, h, members);
+        meshfix__sort_ids(members, n, meshfix__apex_before, m);
+        for (i = 1; i < n; ++i)
+            if (meshfix__apex(m, members[i]) == meshfix__apex(m, members[i - 1]))
+                meshfix__mark_duplicate(m, members[i] / 3);
     }
     for (t = 0; t < m->triangle_count; ++t)
         count += (size_t)((m->tri_bits[t] & MESHFIX__TRI_DUPLICATE) != 0);
@@ -1233,6 +1400,16 @@ MESHFIX__PRIVATE void meshfix__load_corner(const meshfix__mesh *m, unsigned int 
 
 /* ===== >>sdf ===== */
 
+MESHFIX__PRIVATE double meshfix__maxd(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+MESHFIX__PRIVATE double meshfix__mind(double a, double b)
+{
+    return a < b ? a : b;
+}
+
 MESHFIX__PRIVATE double meshfix__max3(double a, double b, double c)
 {
     return a > b ? (a > c ? a : c) : (b > c ? b : c);
@@ -1243,26 +1420,27 @@ MESHFIX__PRIVATE double meshfix__max3(double a, double b, double c)
 MESHFIX__PRIVATE int meshfix__sdf_gradient(const meshfix_options *o, const float p[3], float step, double g[3],
                                           size_t *evaluations)
 {
-    int axis;
+    int axis, finite = 1;
     if (o->sdf_gradient != NULL) {
         float out[3];
         o->sdf_gradient(p, out, o->sdf_user);
         (*evaluations)++;
-        g[0] = out[0], g[1] = out[1], g[2] = out[2];
+        finite = meshfix__is_finite_point(out);
+        g[0] = (double)out[0], g[1] = (double)out[1], g[2] = (double)out[2];
     } else {
         for (axis = 0; axis < 3; ++axis) {
-            float q[3];
-            double ahead, behind;
+            float q[3], ahead, behind;
             q[0] = p[0], q[1] = p[1], q[2] = p[2];
             q[axis] = p[axis] + step;
-            ahead = (double)o->sdf(q, o->sdf_user);
+            ahead = o->sdf(q, o->sdf_user);
             q[axis] = p[axis] - step;
-            behind = (double)o->sdf(q, o->sdf_user);
-            g[axis] = ahead - behind;
+            behind = o->sdf(q, o->sdf_user);
+            finite = finite && meshfix__is_finite(ahead) && meshfix__is_finite(behind);
+            g[axis] = (double)ahead - (double)behind;
         }
         *evaluations += 6;
     }
-    return g[0] * 0 + g[1] * 0 + g[2] * 0 == 0 && (g[0] != 0 || g[1] != 0 || g[2] != 0);
+    return finite && (g[0] != 0 || g[1] != 0 || g[2] != 0);
 }
 
 /* Marks how triangle t faces, as given, against the SDF gradient at its
@@ -1282,9 +1460,8 @@ MESHFIX__PRIVATE int meshfix__sdf_vote(meshfix__mesh *m, unsigned int t, const d
         double ab = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]);
         double bc = (c[0] - b[0]) * (c[0] - b[0]) + (c[1] - b[1]) * (c[1] - b[1]) + (c[2] - b[2]) * (c[2] - b[2]);
         double ca = (a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) + (a[2] - c[2]) * (a[2] - c[2]);
-        double magnitude = meshfix__max3(centroid[0] < 0 ? -centroid[0] : centroid[0],
-                                         centroid[1] < 0 ? -centroid[1] : centroid[1],
-                                         centroid[2] < 0 ? -centroid[2] : centroid[2]);
+        double magnitude = meshfix__max3(MESHFIX_FABS((double)centroid[0]), MESHFIX_FABS((double)centroid[1]),
+                                         MESHFIX_FABS((double)centroid[2]));
         double quarter = 0.25 * MESHFIX_SQRT(meshfix__max3(ab, bc, ca));
         /* a sliver's quarter edge can vanish in float next to its position */
         double least = 4e-6 * (1.0 + magnitude);
@@ -1328,14 +1505,19 @@ MESHFIX__PRIVATE void meshfix__sum_patch(meshfix__mesh *m, unsigned int patch, m
     }
     /* volumes about a vertex of the patch, not the far-away origin, so
        closed shells keep their precision */
-    meshfix__load_corner(m, m->indices[3 * m->queue[m->patch_start[patch]]], origin, origin);
+    for (i = m->patch_start[patch]; i < end && !meshfix__has_geometry(m, m->queue[i]); ++i) {
+    }
+    if (i < end)
+        meshfix__load_corner(m, m->indices[3 * m->queue[i]], origin, origin);
     for (i = m->patch_start[patch]; i < end; ++i) {
         unsigned int t = m->queue[i];
-        double a[3], b[3], c[3], n[3], area, volume;
-        meshfix__load_triangle(m, t, origin, a, b, c, n);
-        area = 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        /* a NaN or infinite coordinate leaves a NaN or infinite area: weight 0 */
-        if (!(area > 0.0 && area - area == 0.0)) {
+        double a[3], b[3], c[3], n[3], area = 0.0, volume;
+        if (meshfix__has_geometry(m, t)) {
+            meshfix__load_triangle(m, t, origin, a, b, c, n);
+            area = 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        }
+        /* a NaN or infinite corner weighs nothing */
+        if (!(area > 0.0)) {
             s->zero_area++;
             continue;
         }
@@ -1423,6 +1605,7 @@ typedef struct meshfix__bvh {
     unsigned int count;   /* triangles in the tree */
     float low[3], high[3];
     double diagonal;
+    double center[3], scale; /* the frame: corners are (position - center) * scale */
 } meshfix__bvh;
 
 typedef struct meshfix__ray {
@@ -1435,20 +1618,19 @@ typedef struct meshfix__ray {
 
 MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_allocator *a, size_t count, size_t size)
 {
-    if (size != 0 && count > ((size_t)-1) / size)
+    /* one byte more, so that a zero-size request is not a NULL "failure" */
+    if (size != 0 && count > (((size_t)-1) - 1) / size)
         return NULL;
     return a->alloc_fn != NULL ? a->alloc_fn(count * size + 1, a->user_data) : MESHFIX_MALLOC(count * size + 1, a->user_data);
 }
 
 /* The caller's allocator, or the MESHFIX_MALLOC / MESHFIX_FREE defaults
-   (both NULL); 0 when alloc_fn comes without free_fn. */
-MESHFIX__PRIVATE int meshfix__pick_allocator(const meshfix_options *options, meshfix_allocator *allocator)
+   (both NULL). */
+MESHFIX__PRIVATE void meshfix__pick_allocator(const meshfix_options *options, meshfix_allocator *allocator)
 {
     MESHFIX_MEMSET(allocator, 0, sizeof(*allocator));
-    if (options == NULL || options->allocator.alloc_fn == NULL)
-        return 1;
-    *allocator = options->allocator;
-    return options->allocator.free_fn != NULL;
+    if (options != NULL && options->allocator.alloc_fn != NULL)
+        *allocator = options->allocator;
 }
 
 MESHFIX__PRIVATE void meshfix__release(const meshfix_allocator *a, void *p)
@@ -1480,11 +1662,19 @@ MESHFIX__PRIVATE float meshfix__box_area(const float low[3], const float high[3]
    The mean of three floats fits in a float again. */
 MESHFIX__PRIVATE float meshfix__centroid(const float *corners, int axis)
 {
-    return (float)(((double)corners[axis] + corners[3 + axis] + corners[6 + axis]) / 3.0);
+    return (float)(((double)corners[axis] + (double)corners[3 + axis] + (double)corners[6 + axis]) / 3.0);
 }
 
 #define MESHFIX__BINS 12
 #define MESHFIX__LEAF 4
+/* The depth of the tree is bounded, so the traversal's fixed stack always
+   holds it: SAH splits down to MESHFIX__BVH_SAH_LEVELS levels (SAH can cut
+   one triangle off a range at each level: planes at x = 2^-k for k up to
+   100 make a tree 100 deep), then halving, which adds at most 31 levels
+   for 2^31 triangles. A traversal keeps at most one pending node per
+   level, plus the two it just pushed. */
+#define MESHFIX__BVH_SAH_LEVELS 28
+#define MESHFIX__BVH_STACK 64
 
 /* The bin of a centroid, clamped before the conversion: a value that is
    not a number (found by fuzzing, from coordinates near FLT_MAX) lands in
@@ -1539,14 +1729,69 @@ MESHFIX__PRIVATE void meshfix__range_add_range(meshfix__range *r, const meshfix_
     meshfix__grow_box(r->centroids, r->centroids + 3, other->centroids + 3);
 }
 
+/* Float geometry (the tree, rays, sample points, coherence) works in a
+   frame that maps the box of the model into [-1, 1]: re-centred, so a
+   model far from the origin keeps its small features, and scaled by a
+   power of two, which rounds nothing, so no difference or product of
+   corners can overflow a float. */
+MESHFIX__PRIVATE void meshfix__fit_frame(meshfix__bvh *b, const meshfix__mesh *m,
+                                        int (*keep)(const meshfix__mesh *m, unsigned int t))
+{
+    double low[3] = {0, 0, 0}, high[3] = {0, 0, 0}, half = 0;
+    unsigned int t, c, seen = 0;
+    int k;
+    for (t = 0; t < m->triangle_count; ++t) {
+        if (!keep(m, t))
+            continue;
+        for (c = 0; c < 3; ++c) {
+            const float *p = meshfix__position(m, m->indices[3 * t + c]);
+            for (k = 0; k < 3; ++k) {
+                double x = (double)p[k];
+                low[k] = seen == 0 || x < low[k] ? x : low[k];
+                high[k] = seen == 0 || x > high[k] ? x : high[k];
+            }
+            seen = 1;
+        }
+    }
+    for (k = 0; k < 3; ++k) {
+        b->center[k] = 0.5 * (low[k] + high[k]);
+        half = 0.5 * (high[k] - low[k]) > half ? 0.5 * (high[k] - low[k]) : half;
+    }
+    b->scale = 1.0;
+    while (half * b->scale > 1.0)
+        b->scale *= 0.5;
+    while (half > 0 && half * b->scale <= 0.5)
+        b->scale *= 2.0;
+}
+
+MESHFIX__PRIVATE void meshfix__frame_point(const meshfix__bvh *b, const float *p, double out[3])
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        out[k] = ((double)p[k] - b->center[k]) * b->scale;
+}
+
+MESHFIX__PRIVATE void meshfix__frame_vertex_of(const meshfix__bvh *b, const float *p, float out[3])
+{
+    double x[3];
+    meshfix__frame_point(b, p, x);
+    out[0] = (float)x[0], out[1] = (float)x[1], out[2] = (float)x[2];
+}
+
+MESHFIX__PRIVATE void meshfix__frame_vertex(const meshfix__bvh *b, const meshfix__mesh *m, unsigned int v, float out[3])
+{
+    meshfix__frame_vertex_of(b, meshfix__position(m, v), out);
+}
+
 /* Corners by vertex id, not by winding: a hit (and its rounding) must
    not change when the triangle is flipped. */
-MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__mesh *m, unsigned int t, float corners[9])
+MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__bvh *b, const meshfix__mesh *m, unsigned int t,
+                                           float corners[9])
 {
     unsigned int sorted[3], c;
     meshfix__sorted_triangle(m, t, sorted);
     for (c = 0; c < 3; ++c)
-        MESHFIX_MEMCPY(corners + 3 * c, meshfix__position(m, sorted[c]), 3 * sizeof(float));
+        meshfix__frame_vertex(b, m, sorted[c], corners + 3 * c);
 }
 
 MESHFIX__PRIVATE void meshfix__fit_range(const meshfix__bvh *b, unsigned int first, unsigned int count,
@@ -1566,7 +1811,7 @@ MESHFIX__PRIVATE unsigned int meshfix__partition(meshfix__bvh *b, unsigned int f
     unsigned int lo = first, hi = first + count;
     while (lo < hi) {
         float *c = b->corners + 9 * (size_t)lo;
-        if (meshfix__bin(c[MESHFIX__SLOT_CENTROID + axis], low, scale) < split) {
+        if (meshfix__bin((double)c[MESHFIX__SLOT_CENTROID + axis], low, scale) < split) {
             lo++;
         } else {
             float tmp[9];
@@ -1587,7 +1832,7 @@ MESHFIX__PRIVATE unsigned int meshfix__partition(meshfix__bvh *b, unsigned int f
    heuristic, and describes the halves; returns the size of the left one,
    0 for a leaf. */
 MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first, const meshfix__range *r,
-                                             meshfix__range *left, meshfix__range *right)
+                                             int use_sah, meshfix__range *left, meshfix__range *right)
 {
     meshfix__range bins[MESHFIX__BINS], below[MESHFIX__BINS];
     unsigned int i, best = 0, j, count = r->count, half;
@@ -1598,13 +1843,14 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first
         return 0;
     for (k = 1; k < 3; ++k)
         axis = r->centroids[3 + k] - r->centroids[k] > r->centroids[3 + axis] - r->centroids[axis] ? k : axis;
-    if (r->centroids[3 + axis] > r->centroids[axis]) {
-        scale = (double)MESHFIX__BINS / ((double)r->centroids[3 + axis] - r->centroids[axis]);
+    if (use_sah && r->centroids[3 + axis] > r->centroids[axis]) {
+        scale = (double)MESHFIX__BINS / ((double)r->centroids[3 + axis] - (double)r->centroids[axis]);
         for (j = 0; j < MESHFIX__BINS; ++j)
             meshfix__empty_range(&bins[j]);
         for (i = first; i < first + count; ++i) {
             const float *c = b->corners + 9 * (size_t)i;
-            meshfix__range_add_slot(&bins[meshfix__bin(c[MESHFIX__SLOT_CENTROID + axis], r->centroids[axis], scale)],
+            meshfix__range_add_slot(&bins[meshfix__bin((double)c[MESHFIX__SLOT_CENTROID + axis],
+                                                       (double)r->centroids[axis], scale)],
                                     c);
         }
         /* below[j]: bins 0 .. j - 1; the sweep back gathers the rest */
@@ -1632,10 +1878,11 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first
             meshfix__empty_range(right);
             for (j = best; j < MESHFIX__BINS; ++j)
                 meshfix__range_add_range(right, &bins[j]);
-            return meshfix__partition(b, first, count, axis, r->centroids[axis], scale, best);
+            return meshfix__partition(b, first, count, axis, (double)r->centroids[axis], scale, best);
         }
     }
-    /* all centroids in one point, or in one bin: halve by slot */
+    /* all centroids in one point, in one bin, or the tree already deep:
+       halve by slot */
     half = count / 2;
     meshfix__fit_range(b, first, half, left);
     meshfix__fit_range(b, first + half, count - half, right);
@@ -1656,10 +1903,11 @@ MESHFIX__PRIVATE void meshfix__set_node(meshfix__bvh_node *n, unsigned int first
 MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m, const meshfix_allocator *a,
                                        int (*keep)(const meshfix__mesh *m, unsigned int t))
 {
-    unsigned int t, n = 0, stack[64], depth = 0;
-    meshfix__range ranges[64], whole;
+    unsigned int t, n = 0, stack[MESHFIX__BVH_STACK], level[MESHFIX__BVH_STACK], depth = 0;
+    meshfix__range ranges[MESHFIX__BVH_STACK], whole;
     int k;
     MESHFIX_MEMSET(b, 0, sizeof(*b));
+    meshfix__fit_frame(b, m, keep);
     /* corners of slot i: corners[9 * i ...] */
     for (t = 0; t < m->triangle_count; ++t)
         n += (unsigned int)keep(m, t);
@@ -1672,7 +1920,7 @@ MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m,
         float corners[9], *slot = b->corners + 9 * (size_t)b->count;
         if (!keep(m, t))
             continue;
-        meshfix__load_corners(m, t, corners);
+        meshfix__load_corners(b, m, t, corners);
         MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
         MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
         meshfix__grow_box(slot, slot + 3, corners + 3);
@@ -1686,16 +1934,19 @@ MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m,
     meshfix__set_node(&b->nodes[0], 0, &whole);
     for (k = 0; k < 3; ++k)
         b->low[k] = whole.box[k], b->high[k] = whole.box[3 + k];
-    b->diagonal = n == 0 ? 0.0 : MESHFIX_SQRT((double)(b->high[0] - b->low[0]) * (b->high[0] - b->low[0]) +
-                                               (double)(b->high[1] - b->low[1]) * (b->high[1] - b->low[1]) +
-                                               (double)(b->high[2] - b->low[2]) * (b->high[2] - b->low[2]));
+    for (k = 0; k < 3; ++k) {
+        double side = (double)b->high[k] - (double)b->low[k];
+        b->diagonal += n == 0 ? 0.0 : side * side;
+    }
+    b->diagonal = MESHFIX_SQRT(b->diagonal);
     stack[depth] = 0;
+    level[depth] = 0;
     ranges[depth++] = whole;
     while (depth > 0) {
         meshfix__range r = ranges[--depth], left, right;
         meshfix__bvh_node *node = &b->nodes[stack[depth]];
-        unsigned int first = node->first, split;
-        split = depth + 2 < 64 ? meshfix__split(b, first, &r, &left, &right) : 0;
+        unsigned int first = node->first, split, below = level[depth] + 1;
+        split = meshfix__split(b, first, &r, level[depth] < MESHFIX__BVH_SAH_LEVELS, &left, &right);
         if (split == 0 || split == r.count)
             continue;
         node->first = b->node_count;
@@ -1703,13 +1954,15 @@ MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m,
         meshfix__set_node(&b->nodes[b->node_count], first, &left);
         meshfix__set_node(&b->nodes[b->node_count + 1], first + split, &right);
         stack[depth] = b->node_count;
+        level[depth] = below;
         ranges[depth++] = left;
         stack[depth] = b->node_count + 1;
+        level[depth] = below;
         ranges[depth++] = right;
         b->node_count += 2;
     }
     for (t = 0; t < n; ++t)
-        meshfix__load_corners(m, b->order[t], b->corners + 9 * (size_t)t);
+        meshfix__load_corners(b, m, b->order[t], b->corners + 9 * (size_t)t);
     return 1;
 }
 
@@ -1721,19 +1974,27 @@ MESHFIX__PRIVATE void meshfix__free_bvh(meshfix__bvh *b, const meshfix_allocator
     MESHFIX_MEMSET(b, 0, sizeof(*b));
 }
 
-MESHFIX__PRIVATE void meshfix__setup_ray(meshfix__ray *r, const float origin[3], const float direction[3],
+/* A direction component of 0 would make its inverse infinite and a slab
+   test 0 * inf; it is nudged to +-1e-30 instead, so every value in a
+   traversal stays finite (the frame keeps positions within [-1, 1]), which
+   is also what -ffinite-math-only assumes. */
+MESHFIX__PRIVATE void meshfix__setup_ray(meshfix__ray *r, const float origin[3], const float given[3],
                                         float t_min, float t_max)
 {
-    float ax = direction[0] < 0 ? -direction[0] : direction[0];
-    float ay = direction[1] < 0 ? -direction[1] : direction[1];
-    float az = direction[2] < 0 ? -direction[2] : direction[2];
+    float direction[3], ax, ay, az;
     int k;
     for (k = 0; k < 3; ++k) {
+        direction[k] = given[k];
+        if (direction[k] > -1e-30f && direction[k] < 1e-30f)
+            direction[k] = given[k] < 0 ? -1e-30f : 1e-30f;
         r->origin[k] = origin[k];
         r->direction[k] = direction[k];
         r->inverse[k] = 1.0f / direction[k];
         r->near_side[k] = r->inverse[k] < 0 ? k + 3 : k;
     }
+    ax = direction[0] < 0 ? -direction[0] : direction[0];
+    ay = direction[1] < 0 ? -direction[1] : direction[1];
+    az = direction[2] < 0 ? -direction[2] : direction[2];
     r->kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     r->kx = (r->kz + 1) % 3;
     r->ky = (r->kx + 1) % 3;
@@ -1773,9 +2034,9 @@ MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c
     w = bx * ay - by * ax;
     if (u == 0.0f || v == 0.0f || w == 0.0f) {
         /* on an edge in float: decide in double, as the paper does */
-        u = (float)((double)cx * by - (double)cy * bx);
-        v = (float)((double)ax * cy - (double)ay * cx);
-        w = (float)((double)bx * ay - (double)by * ax);
+        u = (float)((double)cx * (double)by - (double)cy * (double)bx);
+        v = (float)((double)ax * (double)cy - (double)ay * (double)cx);
+        w = (float)((double)bx * (double)ay - (double)by * (double)ax);
     }
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0))
         return 0;
@@ -1807,7 +2068,6 @@ MESHFIX__PRIVATE float meshfix__hit_box(const meshfix__ray *r, const meshfix__bv
     float tz0 = (bounds[r->near_side[2]] - r->origin[2]) * r->inverse[2];
     float tz1 = (bounds[7 - r->near_side[2]] - r->origin[2]) * r->inverse[2] * 1.0000004f;
     float t0 = r->t_min, t1 = t_max;
-    /* NaN (0 * inf at a slab face) compares false and keeps the interval */
     t0 = tx0 > t0 ? tx0 : t0;
     t0 = ty0 > t0 ? ty0 : t0;
     t0 = tz0 > t0 ? tz0 : t0;
@@ -1872,7 +2132,7 @@ MESHFIX__PRIVATE void meshfix__count_crossing(meshfix__crossings *c, float t, in
 
 MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r, meshfix__query *q)
 {
-    unsigned int stack[64], depth = 0, work = 0;
+    unsigned int stack[MESHFIX__BVH_STACK], depth = 0, work = 0;
     float best = r->t_max;
     meshfix__crossings crossings;
     crossings.halves = crossings.vertex_count = 0;
@@ -1901,6 +2161,7 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
                 near_t = far_t, far_t = x;
                 near_node = n->first + 1, far_node = n->first;
             }
+            MESHFIX_ASSERT(depth + 2 <= MESHFIX__BVH_STACK);
             if (far_t >= 0)
                 stack[depth++] = far_node;
             if (near_t >= 0)
@@ -1974,10 +2235,12 @@ typedef struct meshfix__geometry {
 MESHFIX__PRIVATE void meshfix__relative_normal(const meshfix__mesh *m, unsigned int t, double n[3], double *area)
 {
     double a[3], b[3], c[3], origin[3] = {0, 0, 0}, s;
+    if (!meshfix__has_geometry(m, t)) {
+        n[0] = n[1] = n[2] = *area = 0.0;
+        return;
+    }
     meshfix__load_triangle(m, t, origin, a, b, c, n);
     *area = 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(*area - *area == 0.0))
-        *area = 0.0;
     s = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ? -1.0 : 1.0;
     n[0] *= s, n[1] *= s, n[2] *= s;
 }
@@ -1985,8 +2248,6 @@ MESHFIX__PRIVATE void meshfix__relative_normal(const meshfix__mesh *m, unsigned 
 MESHFIX__PRIVATE int meshfix__has_area(const meshfix__mesh *m, unsigned int t)
 {
     double n[3], area;
-    if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
-        return 0;
     meshfix__relative_normal(m, t, n, &area);
     return area > 0.0;
 }
@@ -1998,8 +2259,7 @@ MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, 
     const meshfix__mesh *m = g->m;
     unsigned int lo = m->patch_start[p], hi = m->patch_start[p + 1] - 1, t;
     double target = (double)meshfix__random(state) * g->patch_area[p];
-    float u = meshfix__random(state), v = meshfix__random(state), su;
-    const float *a, *b, *c;
+    float u = meshfix__random(state), v = meshfix__random(state), su, corners[9];
     int k;
     while (lo < hi) {
         unsigned int mid = lo + (hi - lo) / 2;
@@ -2009,17 +2269,11 @@ MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, 
             hi = mid;
     }
     t = m->queue[lo];
-    {
-        /* corners by vertex id: the point must not move when t is flipped */
-        unsigned int sorted[3];
-        meshfix__sorted_triangle(m, t, sorted);
-        a = meshfix__position(m, sorted[0]);
-        b = meshfix__position(m, sorted[1]);
-        c = meshfix__position(m, sorted[2]);
-    }
+    /* corners by vertex id: the point must not move when t is flipped */
+    meshfix__load_corners(&g->bvh, m, t, corners);
     su = (float)MESHFIX_SQRT((double)u);
     for (k = 0; k < 3; ++k)
-        point[k] = (1.0f - su) * a[k] + su * (1.0f - v) * b[k] + su * v * c[k];
+        point[k] = (1.0f - su) * corners[k] + su * (1.0f - v) * corners[3 + k] + su * v * corners[6 + k];
     return t;
 }
 
@@ -2049,7 +2303,7 @@ MESHFIX__PRIVATE unsigned char meshfix__visibility_sample(const meshfix__geometr
     q.skip = t;
     if (meshfix__trace(&g->bvh, &ray, &q))
         return 0;
-    return n[0] * d[0] + n[1] * d[1] + n[2] * d[2] >= 0 ? 1 : 2;
+    return n[0] * (double)d[0] + n[1] * (double)d[1] + n[2] * (double)d[2] >= 0 ? 1 : 2;
 }
 
 #define MESHFIX__CHUNK 256
@@ -2106,7 +2360,7 @@ MESHFIX__PRIVATE int meshfix__measure_visibility(meshfix__geometry *g, double *f
     if (g->sample_result == NULL)
         return 0;
     chunks = ((size_t)g->sample_count + MESHFIX__CHUNK - 1) / MESHFIX__CHUNK;
-    if (g->o != NULL && g->o->parallel_for != NULL)
+    if (g->o->parallel_for != NULL)
         g->o->parallel_for(meshfix__visibility_chunk, g, chunks, g->o->parallel_user);
     else
         for (c = 0; c < chunks; ++c)
@@ -2146,21 +2400,22 @@ typedef struct meshfix__segment {
     unsigned int low, high; /* its vertices: ties break on these, not on winding or order */
 } meshfix__segment;
 
-MESHFIX__PRIVATE void meshfix__edge_segment(const meshfix__mesh *m, unsigned int h, double scale, meshfix__segment *s)
+MESHFIX__PRIVATE void meshfix__edge_segment(const meshfix__geometry *g, unsigned int h, double scale,
+                                           meshfix__segment *s)
 {
+    const meshfix__mesh *m = g->m;
     unsigned int t = h / 3, next = h % 3 == 2 ? h - 2 : h + 1;
     int reverse = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) != 0, k;
-    const float *a, *b;
     /* geometry by vertex id, winding as a sign: distances and their
        rounding must not depend on which way the input ran the edge */
     s->low = m->indices[h] < m->indices[next] ? m->indices[h] : m->indices[next];
     s->high = m->indices[h] < m->indices[next] ? m->indices[next] : m->indices[h];
     s->sign = ((m->indices[h] < m->indices[next]) != reverse) ? 1.0 : -1.0;
-    a = meshfix__position(m, s->low);
-    b = meshfix__position(m, s->high);
+    meshfix__frame_point(&g->bvh, meshfix__position(m, s->low), s->p);
+    meshfix__frame_point(&g->bvh, meshfix__position(m, s->high), s->q);
     for (k = 0; k < 3; ++k) {
-        s->p[k] = a[k] * scale;
-        s->q[k] = b[k] * scale;
+        s->p[k] *= scale;
+        s->q[k] *= scale;
     }
     s->patch = m->tri_patch[t];
 }
@@ -2352,11 +2607,11 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
     size_t buckets = 16, pair_count = 0, out = 0, k;
     int axis;
     for (axis = 0; axis < 3; ++axis)
-        longest = g->bvh.high[axis] - g->bvh.low[axis] > longest ? g->bvh.high[axis] - g->bvh.low[axis] : longest;
+        longest = meshfix__maxd(longest, (double)g->bvh.high[axis] - (double)g->bvh.low[axis]);
     scale = longest > 0 ? 1.0 / longest : 1.0;
-    reach = o != NULL && o->coherence_distance > 0 ? o->coherence_distance : 0.02;
+    reach = o->coherence_distance > 0 ? (double)o->coherence_distance : 0.02;
     for (h = 0; h < half_edges; ++h)
-        n += (m->mate[h] == MESHFIX__NONE || meshfix__is_ring(m->mate[h])) && m->tri_patch[h / 3] != MESHFIX__NONE;
+        n += (m->mate[h] == MESHFIX__NONE || meshfix__is_ring(m->mate[h])) && meshfix__has_geometry(m, h / 3);
     segments = (meshfix__segment *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__segment));
     pairs = (meshfix__pair *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__pair));
     tmp = (meshfix__pair *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__pair));
@@ -2366,14 +2621,12 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
     /* boundary edges first (they search), then ring members */
     n = 0;
     for (h = 0; h < half_edges; ++h)
-        if (m->mate[h] == MESHFIX__NONE && m->tri_patch[h / 3] != MESHFIX__NONE) {
+        if (m->mate[h] == MESHFIX__NONE && meshfix__has_geometry(m, h / 3)) {
             double len;
-            meshfix__edge_segment(m, h, scale, &segments[n]);
+            meshfix__edge_segment(g, h, scale, &segments[n]);
             len = MESHFIX_SQRT((segments[n].q[0] - segments[n].p[0]) * (segments[n].q[0] - segments[n].p[0]) +
                                (segments[n].q[1] - segments[n].p[1]) * (segments[n].q[1] - segments[n].p[1]) +
                                (segments[n].q[2] - segments[n].p[2]) * (segments[n].q[2] - segments[n].p[2]));
-            if (!(len - len == 0.0))
-                continue;
             average += len;
             longest_edge = len > longest_edge ? len : longest_edge;
             n++;
@@ -2453,13 +2706,15 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
         for (cur = first;; cur = m->mate[cur] & ~MESHFIX__RING) {
             unsigned int next = m->mate[cur] & ~MESHFIX__RING;
             meshfix__segment a, b;
-            meshfix__edge_segment(m, cur, scale, &a);
-            meshfix__edge_segment(m, next, scale, &b);
-            if (a.patch != b.patch && pair_count < (size_t)half_edges) {
-                double length = MESHFIX_SQRT((a.q[0] - a.p[0]) * (a.q[0] - a.p[0]) + (a.q[1] - a.p[1]) * (a.q[1] - a.p[1]) +
-                                             (a.q[2] - a.p[2]) * (a.q[2] - a.p[2]));
-                if (length - length == 0.0)
+            if (meshfix__has_geometry(m, cur / 3) && meshfix__has_geometry(m, next / 3)) {
+                meshfix__edge_segment(g, cur, scale, &a);
+                meshfix__edge_segment(g, next, scale, &b);
+                if (a.patch != b.patch) {
+                    double length = MESHFIX_SQRT((a.q[0] - a.p[0]) * (a.q[0] - a.p[0]) +
+                                                 (a.q[1] - a.p[1]) * (a.q[1] - a.p[1]) +
+                                                 (a.q[2] - a.p[2]) * (a.q[2] - a.p[2]));
                     meshfix__add_pair(pairs, &pair_count, &a, b.patch, meshfix__local_coherence(&a, &b, 0.0), length);
+                }
             }
             if (cur == h)
                 break;
@@ -2535,16 +2790,6 @@ MESHFIX__PRIVATE unsigned int meshfix__merge_turn(meshfix__merge *g, unsigned in
 {
     unsigned int parity, root = meshfix__merge_find(g, p, &parity);
     return parity ^ g->turn[root];
-}
-
-MESHFIX__PRIVATE double meshfix__maxd(double a, double b)
-{
-    return a > b ? a : b;
-}
-
-MESHFIX__PRIVATE double meshfix__mind(double a, double b)
-{
-    return a < b ? a : b;
 }
 
 MESHFIX__PRIVATE int meshfix__hardly_visible(double vmax, double vmin, double eps, double kv)
@@ -2641,11 +2886,13 @@ MESHFIX__PRIVATE int meshfix__shell_crosses(const meshfix__geometry *g, unsigned
     q.skip_group = p;
     for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
         unsigned int t = m->queue[i], k;
+        if (!meshfix__has_geometry(m, t))
+            continue;
         for (k = 0; k < 3; ++k) {
-            const float *a = meshfix__position(m, m->indices[3 * t + k]);
-            const float *b = meshfix__position(m, m->indices[3 * t + (k + 1) % 3]);
-            float d[3];
+            float a[3], b[3], d[3];
             meshfix__ray ray;
+            meshfix__frame_vertex(&g->bvh, m, m->indices[3 * t + k], a);
+            meshfix__frame_vertex(&g->bvh, m, m->indices[3 * t + (k + 1) % 3], b);
             d[0] = b[0] - a[0], d[1] = b[1] - a[1], d[2] = b[2] - a[2];
             meshfix__setup_ray(&ray, a, d, 1e-4f, 1.0f - 1e-4f);
             if (meshfix__trace(&g->bvh, &ray, &q))
@@ -2708,14 +2955,17 @@ MESHFIX__PRIVATE void meshfix__decide_up(meshfix__mesh *m, const meshfix_options
     double up[3] = {0, 0, 1}, length;
     unsigned int p;
     if (o->up[0] != 0 || o->up[1] != 0 || o->up[2] != 0)
-        up[0] = o->up[0], up[1] = o->up[1], up[2] = o->up[2];
+        up[0] = (double)o->up[0], up[1] = (double)o->up[1], up[2] = (double)o->up[2];
     length = MESHFIX_SQRT(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
     for (p = 0; p < m->patch_count; ++p) {
         meshfix__patch_sums s;
         double lean;
         meshfix__sum_patch(m, p, &s);
         lean = (s.normal[0] * up[0] + s.normal[1] * up[1] + s.normal[2] * up[2]) / length;
-        meshfix__decide(m, p, lean < 0, s.area > 0 ? (float)((lean < 0 ? -lean : lean) / s.area) : 0.0f);
+        /* a closed shell leans nowhere: its sum is zero up to rounding,
+           which must not decide (the majority does) */
+        if ((lean < 0 ? -lean : lean) > 1e-6 * s.area)
+            meshfix__decide(m, p, lean < 0, (float)((lean < 0 ? -lean : lean) / s.area));
     }
 }
 
@@ -2750,9 +3000,9 @@ MESHFIX__PRIVATE int meshfix__decide_visibility(meshfix__geometry *g, meshfix_re
     double total_area = 0;
     unsigned int p, *open = NULL;
     int ok = 0;
-    k.c0 = o->visibility_c0 > 0 ? o->visibility_c0 : 0.5;
-    k.eps = o->visibility_eps > 0 ? o->visibility_eps : 0.02;
-    k.kv = o->visibility_kv > 0 ? o->visibility_kv : 1.5;
+    k.c0 = o->visibility_c0 > 0 ? (double)o->visibility_c0 : 0.5;
+    k.eps = o->visibility_eps > 0 ? (double)o->visibility_eps : 0.02;
+    k.kv = o->visibility_kv > 0 ? (double)o->visibility_kv : 1.5;
     k.use_visibility = !(o->visibility_flags & MESHFIX_VISIBILITY_COHERENCE_ONLY);
     k.use_coherence = !(o->visibility_flags & MESHFIX_VISIBILITY_ONLY);
     MESHFIX_MEMSET(&merge, 0, sizeof(merge));
@@ -2889,7 +3139,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, const meshfix
     g.m = m;
     g.o = m->options;
     g.allocator = *allocator;
-    g.seed = m->options != NULL && m->options->seed != 0 ? m->options->seed : 0x5EEDu;
+    g.seed = m->options->seed != 0 ? m->options->seed : 0x5EEDu;
     g.patch_area = (double *)meshfix__allocate(allocator, m->patch_count, sizeof(double));
     g.cumulative_area = (double *)meshfix__allocate(allocator, m->triangle_count, sizeof(double));
     g.sample_start = (unsigned int *)meshfix__allocate(allocator, m->patch_count + 1, sizeof(unsigned int));
@@ -2943,7 +3193,7 @@ MESHFIX__PRIVATE size_t meshfix__count_inconsistent(const meshfix__mesh *m, int 
 
 MESHFIX__PRIVATE meshfix_component *meshfix__component_out(const meshfix_options *o, unsigned int component)
 {
-    return o != NULL && o->components != NULL && component < o->components_capacity ? &o->components[component] : NULL;
+    return o->components != NULL && component < o->components_capacity ? &o->components[component] : NULL;
 }
 
 /* Counts each edge once, for the component of its triangles. */
@@ -3001,12 +3251,8 @@ MESHFIX__PRIVATE size_t meshfix__count_component_vertices(meshfix__mesh *m, cons
                 for (k = 0; k < 3; ++k) {
                     if (mark[v[k]] == 0) {
                         r->vertices_used++;
-                        if (m->positions != NULL) {
-                            const float *x = meshfix__position(m, v[k]);
-                            r->vertices_non_finite += (size_t)!(meshfix__is_finite(x[0]) &&
-                                                               meshfix__is_finite(x[1]) &&
-                                                               meshfix__is_finite(x[2]));
-                        }
+                        if (m->positions != NULL)
+                            r->vertices_non_finite += (size_t)!meshfix__is_finite_point(meshfix__position(m, v[k]));
                     }
                     if (mark[v[k]] != c + 1) {
                         mark[v[k]] = c + 1;
@@ -3111,7 +3357,7 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         if (out != NULL)
             meshfix__add_patch_to_component(m, p, &s, volume, out);
         m->component_bits[m->patch_link[p]] |= (unsigned char)bits;
-        if (o != NULL && o->patch_confidence != NULL && p < o->patch_confidence_capacity && policy >= 0)
+        if (o->patch_confidence != NULL && p < o->patch_confidence_capacity && policy >= 0)
             o->patch_confidence[p] = m->confidence != NULL && (bits & MESHFIX__PATCH_DECIDED)
                                          ? m->confidence[p]
                                          : meshfix__confidence(m, p, policy, &s);
@@ -3190,11 +3436,11 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
     r->patches = m->patch_count;
     r->components = m->component_count;
 
-    n = o != NULL && o->components != NULL ? o->components_capacity : 0;
+    n = o->components != NULL ? o->components_capacity : 0;
     n = m->component_count < n ? m->component_count : n;
     if (policy >= 0) {
         /* the only stage that allocates: ray queries for some policies */
-        if (o != NULL && o->patch_confidence != NULL && m->patch_count != 0) {
+        if (o->patch_confidence != NULL && m->patch_count != 0) {
             m->confidence = (float *)meshfix__allocate(allocator, m->patch_count, sizeof(float));
             if (m->confidence == NULL)
                 return MESHFIX_ERROR_OUT_OF_MEMORY;
@@ -3226,29 +3472,64 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
     return MESHFIX_OK;
 }
 
-/* One pass; reads each triangle whole before writing it, so destination
-   may be indices. */
+MESHFIX__PRIVATE void meshfix__write_triangle(const meshfix__mesh *m, size_t t, unsigned int *destination)
+{
+    unsigned int a = m->indices[3 * t], b = m->indices[3 * t + 1], c = m->indices[3 * t + 2];
+    int flip = (m->tri_bits[t] & MESHFIX__TRI_FLIP) != 0;
+    destination[3 * t] = a;
+    destination[3 * t + 1] = flip ? c : b;
+    destination[3 * t + 2] = flip ? b : c;
+}
+
+/* Each triangle is read whole before it is written, and each output
+   triangle depends on its own input triangle only. Written in the
+   direction memmove would copy, a destination that overlaps the indices
+   anywhere (equal, or shifted by any amount) never overwrites an index
+   before it is read. The addresses are compared as integers: the two
+   pointers may belong to different arrays. */
 MESHFIX__PRIVATE void meshfix__write_indices(const meshfix__mesh *m, unsigned int *destination)
 {
     size_t t;
-    for (t = 0; t < m->triangle_count; ++t) {
-        unsigned int a = m->indices[3 * t], b = m->indices[3 * t + 1], c = m->indices[3 * t + 2];
-        int flip = (m->tri_bits[t] & MESHFIX__TRI_FLIP) != 0;
-        destination[3 * t] = a;
-        destination[3 * t + 1] = flip ? c : b;
-        destination[3 * t + 2] = flip ? b : c;
-    }
+    if ((size_t)destination <= (size_t)m->indices)
+        for (t = 0; t < m->triangle_count; ++t)
+            meshfix__write_triangle(m, t, destination);
+    else
+        for (t = m->triangle_count; t-- > 0;)
+            meshfix__write_triangle(m, t, destination);
 }
 
 MESHFIX__PRIVATE void meshfix__write_triangle_outputs(const meshfix__mesh *m, const meshfix_options *o, int policy)
 {
     size_t t;
-    if (o != NULL && o->flipped != NULL && policy >= 0)
+    if (o->flipped != NULL && policy >= 0)
         for (t = 0; t < m->triangle_count; ++t)
             o->flipped[t] = (unsigned char)meshfix__flip_of(m, (unsigned int)t);
-    if (o != NULL && o->patch_ids != NULL)
+    if (o->patch_ids != NULL)
         for (t = 0; t < m->triangle_count; ++t)
             o->patch_ids[t] = m->tri_patch[t];
+}
+
+/* Option values outside their documented ranges are refused, not
+   clamped: a struct nobody zeroed must not become a 4 GB ray budget. */
+#define MESHFIX__MAX_RAYS ((size_t)1 << 24)
+#define MESHFIX__MAX_MIN_SAMPLES 65536u
+
+MESHFIX__PRIVATE int meshfix__is_fraction(float x, float most)
+{
+    return meshfix__is_finite(x) && x >= 0.0f && x <= most;
+}
+
+MESHFIX__PRIVATE int meshfix__options_valid(const meshfix_options *o, int policy)
+{
+    if (policy == MESHFIX_POLICY_SDF &&
+        (o->sdf == NULL || (unsigned int)o->sdf_mode > (unsigned int)MESHFIX_SDF_PER_TRIANGLE))
+        return 0;
+    if (o->allocator.alloc_fn != NULL && o->allocator.free_fn == NULL)
+        return 0;
+    return o->visibility_rays <= MESHFIX__MAX_RAYS && o->visibility_min_samples <= MESHFIX__MAX_MIN_SAMPLES &&
+           meshfix__is_fraction(o->coherence_distance, 1.0f) && meshfix__is_fraction(o->visibility_c0, 1e6f) &&
+           meshfix__is_fraction(o->visibility_eps, 1.0f) && meshfix__is_fraction(o->visibility_kv, 1e6f) &&
+           meshfix__is_fraction(o->sdf_step, 3e38f) && meshfix__is_finite_point(o->up);
 }
 
 /* The pipeline shared by orient and inspect (policy < 0). Outputs are
@@ -3256,24 +3537,27 @@ MESHFIX__PRIVATE void meshfix__write_triangle_outputs(const meshfix__mesh *m, co
 MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const unsigned int *indices,
                                              size_t index_count, const float *positions,
                                              size_t vertex_count, size_t stride,
-                                             const meshfix_options *options, int policy,
+                                             const meshfix_options *caller_options, int policy,
                                              meshfix_report *report)
 {
     meshfix_allocator allocator;
     meshfix__plan plan;
     meshfix__mesh m;
     meshfix_report r;
-    meshfix_options defaults;
+    meshfix_options options;
     unsigned char *raw, *block;
     size_t vertex_range = 0;
     meshfix_result result;
 
-    /* every stage may read options: NULL means all zero */
-    MESHFIX_MEMSET(&defaults, 0, sizeof(defaults));
-    options = options != NULL ? options : &defaults;
+    /* a copy: NULL means all zero, and the report may share memory with
+       the caller's options (it is written last, after every read) */
+    if (caller_options != NULL)
+        options = *caller_options;
+    else
+        MESHFIX_MEMSET(&options, 0, sizeof(options));
 
     /* 1. validate, before touching anything */
-    result = meshfix__validate(indices, index_count, positions, vertex_count, stride, &vertex_range);
+    result = meshfix__validate(indices, index_count, positions, vertex_count, stride, &vertex_range, &plan);
     if (result != MESHFIX_OK)
         return result;
     if (policy == MESHFIX_POLICY_AUTO && positions == NULL)
@@ -3281,8 +3565,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
     if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_SDF || policy == MESHFIX_POLICY_VISIBILITY ||
          policy == MESHFIX_POLICY_UP) && positions == NULL)
         return MESHFIX_ERROR_POSITIONS_REQUIRED;
-    if (policy == MESHFIX_POLICY_SDF &&
-        (options->sdf == NULL || (unsigned int)options->sdf_mode > (unsigned int)MESHFIX_SDF_PER_TRIANGLE))
+    if (!meshfix__options_valid(&options, policy))
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     MESHFIX_MEMSET(&r, 0, sizeof(r));
     r.triangles = index_count / 3;
@@ -3291,16 +3574,13 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
             *report = r;
         return MESHFIX_OK;
     }
-    if (!meshfix__make_plan(&plan, vertex_range, index_count / 3))
-        return MESHFIX_ERROR_TOO_LARGE;
 
     /* one block holds all scratch: the caller's, or a single allocation */
-    if (!meshfix__pick_allocator(options, &allocator))
-        return MESHFIX_ERROR_INVALID_ARGUMENT;
-    if (options != NULL && options->scratch != NULL) {
-        if (options->scratch_size < plan.total)
+    meshfix__pick_allocator(&options, &allocator);
+    if (options.scratch != NULL) {
+        if (options.scratch_size < plan.total)
             return MESHFIX_ERROR_SCRATCH_TOO_SMALL;
-        raw = (unsigned char *)options->scratch;
+        raw = (unsigned char *)options.scratch;
     } else {
         raw = (unsigned char *)(allocator.alloc_fn != NULL ? allocator.alloc_fn(plan.total, allocator.user_data)
                                                            : MESHFIX_MALLOC(plan.total, allocator.user_data));
@@ -3308,26 +3588,22 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
             return MESHFIX_ERROR_OUT_OF_MEMORY;
     }
     block = raw + (16u - (size_t)raw % 16u) % 16u;
-    meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range, options, policy);
+    meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range, &options, policy);
 
     /* 2-5. edges, patches, components, policy */
-    result = meshfix__analyze(&m, policy, options, report != NULL || (options != NULL && options->components != NULL),
-                              &allocator, &r);
-    if (result != MESHFIX_OK) {
-        if (raw != (unsigned char *)(options != NULL ? options->scratch : NULL))
-            meshfix__release(&allocator, raw);
-        return result;
-    }
+    result = meshfix__analyze(&m, policy, &options, report != NULL || options.components != NULL, &allocator, &r);
 
     /* 6. write: nothing can fail from here on */
-    if (destination != NULL && policy >= 0)
-        meshfix__write_indices(&m, destination);
-    meshfix__write_triangle_outputs(&m, options, policy);
-    if (report != NULL)
-        *report = r;
-    if (raw != (unsigned char *)(options != NULL ? options->scratch : NULL))
+    if (result == MESHFIX_OK) {
+        if (destination != NULL && policy >= 0)
+            meshfix__write_indices(&m, destination);
+        meshfix__write_triangle_outputs(&m, &options, policy);
+        if (report != NULL)
+            *report = r;
+    }
+    if (raw != (unsigned char *)options.scratch)
         meshfix__release(&allocator, raw);
-    return MESHFIX_OK;
+    return result;
 }
 
 /* ===== >>public ===== */
@@ -3404,46 +3680,53 @@ MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex
 {
     meshfix_allocator allocator;
     meshfix__welder w;
-    unsigned int *result;
-    size_t v, size = 16, unique;
+    unsigned int *block, *result;
+    size_t v, buckets = 16, unique, words;
     if (vertex_count == 0) {
         if (unique_count != NULL)
             *unique_count = 0;
         return MESHFIX_OK;
     }
     if (remap == NULL || vertex_positions == NULL || vertex_positions_stride < 3 * sizeof(float) ||
-        vertex_positions_stride % sizeof(float) != 0 || !(tolerance >= 0.0f) || !(tolerance - tolerance == 0.0f))
+        vertex_positions_stride % sizeof(float) != 0 || !meshfix__is_finite(tolerance) || tolerance < 0.0f)
         return MESHFIX_ERROR_INVALID_ARGUMENT;
-    if (vertex_count > MESHFIX__MAX_VERTEX_COUNT - 1 || (vertex_count - 1) > ((size_t)-1) / vertex_positions_stride)
+    if (vertex_count > MESHFIX__MAX_VERTEX_COUNT - 1 || !meshfix__vertices_addressable(vertex_count, vertex_positions_stride))
         return MESHFIX_ERROR_TOO_LARGE;
-    for (v = 0; v < vertex_count; ++v) {
-        const float *p = (const float *)(const void *)((const char *)vertex_positions + v * vertex_positions_stride);
-        if (!(meshfix__is_finite(p[0]) && meshfix__is_finite(p[1]) && meshfix__is_finite(p[2])))
+    for (v = 0; v < vertex_count; ++v)
+        if (!meshfix__is_finite_point((const float *)(const void *)((const char *)vertex_positions +
+                                                                    v * vertex_positions_stride)))
             return MESHFIX_ERROR_NON_FINITE;
-    }
-    if (!meshfix__pick_allocator(options, &allocator))
+    if (options != NULL && options->allocator.alloc_fn != NULL && options->allocator.free_fn == NULL)
         return MESHFIX_ERROR_INVALID_ARGUMENT;
-    while (size < 2 * vertex_count)
-        size *= 2;
+    meshfix__pick_allocator(options, &allocator);
+    while (buckets < vertex_count)
+        buckets *= 2;
+    /* bucket ends, then order, home, rep_head, rep_next and the result:
+       five words per vertex, checked against overflow */
+    if (vertex_count > ((size_t)-1) / sizeof(unsigned int) / 5 - buckets)
+        return MESHFIX_ERROR_TOO_LARGE;
+    words = buckets + 5 * vertex_count;
+    block = (unsigned int *)meshfix__allocate(&allocator, words, sizeof(unsigned int));
+    if (block == NULL)
+        return MESHFIX_ERROR_OUT_OF_MEMORY;
     MESHFIX_MEMSET(&w, 0, sizeof(w));
     w.positions = (const char *)vertex_positions;
     w.stride = vertex_positions_stride;
-    w.cell = (double)tolerance;
-    w.mask = size - 1;
-    w.slots = (unsigned int *)meshfix__allocate(&allocator, size, sizeof(unsigned int));
-    result = (unsigned int *)meshfix__allocate(&allocator, vertex_count, sizeof(unsigned int));
-    if (w.slots == NULL || result == NULL) {
-        meshfix__release(&allocator, w.slots);
-        meshfix__release(&allocator, result);
-        return MESHFIX_ERROR_OUT_OF_MEMORY;
-    }
-    MESHFIX_MEMSET(w.slots, 0xFF, size * sizeof(unsigned int));
+    /* a hair wider than the tolerance, so rounding in the division never
+       puts two vertices within it more than one cell apart */
+    w.cell = (double)tolerance * (1.0 + 1e-9);
+    w.mask = buckets - 1;
+    w.bucket_end = block;
+    w.order = block + buckets;
+    w.home = w.order + vertex_count;
+    w.rep_head = w.home + vertex_count;
+    w.rep_next = w.rep_head + vertex_count;
+    result = w.rep_next + vertex_count;
     unique = meshfix__weld_run(&w, vertex_count, (double)tolerance, result);
     MESHFIX_MEMCPY(remap, result, vertex_count * sizeof(unsigned int));
     if (unique_count != NULL)
         *unique_count = unique;
-    meshfix__release(&allocator, w.slots);
-    meshfix__release(&allocator, result);
+    meshfix__release(&allocator, block);
     return MESHFIX_OK;
 }
 

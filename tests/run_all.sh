@@ -6,7 +6,7 @@ set -u
 cd "$(dirname "$0")/.."
 CC=${CC:-cc}
 CXX=${CXX:-c++}
-STRICT="-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion -Wcast-qual -Werror"
+STRICT="-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion -Wcast-qual -Wdouble-promotion -Werror"
 out=build/compile
 mkdir -p "$out"
 passed=0
@@ -62,6 +62,45 @@ suite "visibility, nesting, weld, rays" build/test_visibility
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_visibility_asan
 suite "hostile input, allocation failure, adversarial sizes" build/test_hostile
 MESHFIX_ADVERSARIAL_N=20000 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_hostile_asan
+for t in test_meshfix test_sdf test_visibility test_hostile; do
+    suite "$t built with -O3 -ffast-math (NaN tests on bit patterns)" build/${t}_fast
+done
+
+# 32-bit: size_t of 4 bytes, x87 floating point
+if echo 'int main(void){return 0;}' | $CC -m32 -x c - -o "$out/m32probe" >/dev/null 2>&1; then
+    for t in test_meshfix test_sdf test_visibility test_hostile; do
+        if $MAKE -s build/${t}_m32 >"$out/m32build.log" 2>&1; then
+            suite "$t built with -m32" build/${t}_m32
+        else
+            echo "FAIL $t: the -m32 build failed"; sed 's/^/    /' "$out/m32build.log" | head -20
+            failed=$((failed + 1))
+        fi
+    done
+    m32=1
+else
+    echo "SKIP -m32 suites: no 32-bit toolchain here (bash .ci/run installs gcc-multilib)"
+    m32=0
+fi
+
+echo "== the same outputs from every build"
+outputs() { # name, compiler and flags...: builds tests/outputs.c and writes its lines
+    local name=$1
+    shift
+    "$@" -std=c99 -w tests/outputs.c -o "$out/outputs_$name" -lm && "$out/outputs_$name" >"$out/outputs_$name.txt"
+}
+same_outputs() { # name, compiler and flags...: as the -O0 reference
+    outputs "$@" && cmp "$out/outputs_O0.txt" "$out/outputs_$1.txt"
+}
+check "outputs: $CC -O0 (the reference)" outputs O0 $CC -O0
+check "outputs: $CC -O2 gives the reference's" same_outputs O2 $CC -O2
+check "outputs: $CC -O3 -ffast-math gives the reference's" same_outputs fast $CC -O3 -ffast-math
+if command -v clang >/dev/null 2>&1; then
+    check "outputs: clang -O2 gives the reference's" same_outputs clang clang -O2
+fi
+if [ "$m32" -eq 1 ]; then
+    check "outputs: $CC -m32 -O2 gives the reference's" same_outputs m32 $CC -m32 -O2
+fi
+
 suite "OpenMesh as oracle" build/test_openmesh
 if command -v valgrind >/dev/null 2>&1; then
     # memcheck: any error or leak fails the run (exit code 99)
@@ -79,6 +118,7 @@ check "meshfix CLI: one-line error, exit 1 on a bad file" sh -c "printf 'OFF\n99
 check "meshfix CLI: unknown policy is a one-line error" sh -c "build/meshfix --policy sdf $out/demo.obj $out/x.obj 2>$out/err.txt; test \$? -eq 1 && test \$(wc -l < $out/err.txt) -eq 1"
 check "meshfix CLI: every format round-trips" sh -c "for f in obj off stl ply; do build/meshfix --quiet $out/demo.obj $out/rt.\$f && build/meshfix --inspect $out/rt.\$f | grep -q 'triangles 8064' || exit 1; done"
 
+suite "command-line tool: misuse, crafted and odd files" bash tests/test_cli.sh
 check "sdf_demo repairs its scene (exit 0: consistent, outward)" sh -c "build/sdf_demo $out/sdf.obj >/dev/null && build/meshfix --inspect $out/sdf.obj | grep -q 'inconsistent 0'"
 
 echo "$passed passed, $failed failed"

@@ -168,12 +168,13 @@ static void test_matrix_refusals(void)
     expect_refusal("index_count over 2^31", tetra_i, (size_t)0x80000001u, tetra_p, 4, 12, MESHFIX_ERROR_TOO_LARGE);
     expect_refusal("index_count near SIZE_MAX", tetra_i, ((size_t)-1) / 3 * 3, tetra_p, 4, 12, MESHFIX_ERROR_TOO_LARGE);
     if (sizeof(size_t) > 4) {
-        size_t huge = (size_t)1 << 33; /* over 2^32 vertices cannot be indexed */
+        size_t huge = (size_t)1 << 16 << 17; /* over 2^32 vertices cannot be indexed */
         expect_refusal("vertex_count over 2^32", tetra_i, 12, tetra_p, huge, 12, MESHFIX_ERROR_TOO_LARGE);
         expect_refusal("vertex_count * stride overflows", tetra_i, 12, tetra_p, 0xFFFFFFFFu, ((size_t)-1) / 8 / 4 * 4,
                        MESHFIX_ERROR_TOO_LARGE);
     }
-    CHECK_EQ(meshfix_scratch_size((size_t)1 << 40, 12), sizeof(size_t) > 4 ? 0 : 0);
+    if (sizeof(size_t) > 4)
+        CHECK_EQ(meshfix_scratch_size((size_t)1 << 20 << 20, 12), 0);
     CHECK_EQ(meshfix_scratch_size(4, ((size_t)-1) / 3 * 3), 0);
     /* positions needed */
     {
@@ -346,7 +347,7 @@ static void fail_every_allocation(const char *what, const unsigned int *indices,
         }
     }
     {
-        /* the weld: two allocations */
+        /* the weld: one allocation */
         failing_allocator a;
         meshfix_options o;
         unsigned int *remap = (unsigned int *)malloc(vertex_count * sizeof(unsigned int));
@@ -355,7 +356,7 @@ static void fail_every_allocation(const char *what, const unsigned int *indices,
         o.allocator.alloc_fn = failing_alloc;
         o.allocator.free_fn = failing_free;
         o.allocator.user_data = &a;
-        for (n = 1; n <= 2; ++n) {
+        for (n = 1; n <= 1; ++n) { /* one block */
             memset(&a, 0, sizeof(a));
             memset(remap, 0x3C, vertex_count * sizeof(unsigned int));
             a.fail_at = n;
@@ -479,11 +480,322 @@ static void test_adversarial(void)
     }
 }
 
+/* ---- what an independent audit found (each reached a crash, a hang or
+   quadratic time before it was fixed) ---- */
+
+/* Triangles in the planes x, y, z = 11^-(k + axis / 3), each as small as
+   its distance from the origin: the binned SAH cuts one of them off at
+   each level, so a build without a depth bound made a chain as deep as
+   the triangles are many (64 here with 135 of them, the traversal's stack
+   size), and a ray from near the origin overflowed the traversal stack.
+   The depth is bounded now; it is measured, rays are cast from every
+   triangle, and every policy runs (under the sanitizers in make test). */
+static size_t tree_depth(const meshfix__bvh *b, unsigned int node)
+{
+    size_t left, right;
+    if (b->nodes[node].count != 0)
+        return 1;
+    left = tree_depth(b, b->nodes[node].first);
+    right = tree_depth(b, b->nodes[node].first + 1);
+    return 1 + (left > right ? left : right);
+}
+
+static void make_shrinking_planes(mio_mesh *g, unsigned int planes)
+{
+    unsigned int k, axis;
+    memset(g, 0, sizeof(*g));
+    g->vertex_count = 9 * (size_t)planes;
+    g->index_count = 9 * (size_t)planes;
+    g->positions = (float *)calloc(3 * g->vertex_count, sizeof(float));
+    g->indices = (unsigned int *)malloc(g->index_count * sizeof(unsigned int));
+    for (k = 0; k < planes; ++k)
+        for (axis = 0; axis < 3; ++axis) {
+            size_t v = 9 * (size_t)k + 3 * axis, c;
+            float x = (float)pow(11.0, -((double)k + axis / 3.0));
+            for (c = 0; c < 3; ++c) {
+                g->positions[3 * (v + c) + axis] = x;
+                g->positions[3 * (v + c) + (axis + 1) % 3] = c == 1 ? x : 0.0f;
+                g->positions[3 * (v + c) + (axis + 2) % 3] = c == 2 ? x : 0.0f;
+                g->indices[v + c] = (unsigned int)(v + c);
+            }
+        }
+}
+
+static void test_deep_tree(void)
+{
+    mio_mesh g;
+    meshfix__plan plan;
+    meshfix__mesh m;
+    meshfix__bvh bvh;
+    meshfix_allocator allocator;
+    meshfix_options o;
+    meshfix_report r;
+    unsigned char *block;
+    unsigned int t, i, *group;
+    unsigned long long seed = 1;
+    size_t depth;
+    int p;
+    make_shrinking_planes(&g, 45);
+    group = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
+    meshfix__make_plan(&plan, g.vertex_count, g.index_count / 3);
+    block = (unsigned char *)malloc(plan.total + 16);
+    memset(&o, 0, sizeof(o));
+    meshfix__bind(&m, block + (16 - (size_t)block % 16) % 16, &plan, g.indices, g.index_count, g.positions, 12,
+                  g.vertex_count, &o, 0);
+    meshfix__mark_degenerate(&m);
+    memset(&allocator, 0, sizeof(allocator));
+    CHECK(meshfix__build_bvh(&bvh, &m, &allocator, meshfix__has_area));
+    depth = tree_depth(&bvh, 0);
+    printf("    %u triangles shrinking toward the origin: tree depth %lu, traversal stack %d\n", bvh.count,
+           (unsigned long)depth, MESHFIX__BVH_STACK);
+    CHECK(depth + 1 <= MESHFIX__BVH_STACK);
+    for (t = 0; t < bvh.count; ++t)
+        for (i = 0; i < 16; ++i) {
+            float from[3], d[3];
+            meshfix__ray ray;
+            meshfix__query q;
+            int k;
+            for (k = 0; k < 3; ++k) {
+                from[k] = (bvh.corners[9 * t + k] + bvh.corners[9 * t + 3 + k] + bvh.corners[9 * t + 6 + k]) / 3.0f;
+                d[k] = (float)gen_uniform(&seed) - 0.5f;
+            }
+            meshfix__setup_ray(&ray, from, d, 0.0f, 1e30f);
+            q.mode = MESHFIX__COUNT_HITS;
+            q.skip = MESHFIX__NONE;
+            q.group = group;
+            q.skip_group = 1;
+            meshfix__trace(&bvh, &ray, &q);
+        }
+    meshfix__free_bvh(&bvh, &allocator);
+    for (p = 0; p < POLICIES; ++p) {
+        o = policy_options(p);
+        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
+                 MESHFIX_OK);
+    }
+    free(block);
+    free(group);
+    mio_free(&g);
+}
+
+/* Option values out of range are refused with nothing written (a struct
+   nobody zeroed once asked for 2^32 + 64 rays). */
+static void test_option_ranges(void)
+{
+    int field, p;
+    for (field = 0; field < 9; ++field)
+        for (p = 0; p < POLICIES; ++p) {
+            guarded g;
+            meshfix_options o = policy_options(p);
+            guard(&g, tetra_i, 12);
+            attach(&g, &o);
+            switch (field) {
+            case 0: o.visibility_rays = sizeof(size_t) > 4 ? (size_t)0xFFFFFFFFu + 65u : (size_t)0xFFFFFFFFu; break;
+            case 1: o.visibility_rays = ((size_t)1 << 24) + 1; break;
+            case 2: o.visibility_min_samples = 1u << 20; break;
+            case 3: o.coherence_distance = NAN; break;
+            case 4: o.visibility_eps = -1.0f; break;
+            case 5: o.visibility_kv = INFINITY; break;
+            case 6: o.up[1] = NAN; break;
+            case 7: o.sdf_step = -INFINITY; break;
+            default: o.sdf_mode = (meshfix_sdf_mode)7; o.policy = MESHFIX_POLICY_SDF; break;
+            }
+            CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report),
+                     MESHFIX_ERROR_INVALID_ARGUMENT);
+            CHECK(untouched(&g));
+            unguard(&g);
+        }
+}
+
+/* The report may share memory with the options that carry the caller's
+   scratch: the options are read whole before the report is written. */
+static void test_report_shares_options(void)
+{
+    union {
+        meshfix_options options;
+        meshfix_report report;
+    } shared;
+    unsigned int out[12];
+    size_t size = meshfix_scratch_size(4, 12);
+    void *scratch = malloc(size);
+    memset(&shared, 0, sizeof(shared));
+    shared.options.scratch = scratch;
+    shared.options.scratch_size = size;
+    shared.options.policy = MESHFIX_POLICY_MAJORITY;
+    CHECK_EQ(meshfix_orient(out, tetra_i, 12, tetra_p, 4, 12, &shared.options, &shared.report), MESHFIX_OK);
+    CHECK_EQ(shared.report.triangles, 4);
+    free(scratch);
+}
+
+/* A destination that overlaps the indices at any shift gives what a
+   separate buffer gets. */
+static void test_overlapping_destination(void)
+{
+    mio_mesh g;
+    unsigned int *expected, *buffer;
+    int shift;
+    CHECK(gen_sphere(&g, 6, 8, 0, 0, 0, 1));
+    gen_flip_random(&g, 0.4, 11, NULL);
+    expected = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+    buffer = (unsigned int *)malloc((g.index_count + 16) * sizeof(unsigned int));
+    CHECK_EQ(meshfix_orient(expected, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, NULL),
+             MESHFIX_OK);
+    for (shift = -6; shift <= 6; ++shift) {
+        unsigned int *in = buffer + 8, *out = buffer + 8 + shift;
+        memcpy(in, g.indices, g.index_count * sizeof(unsigned int));
+        CHECK_EQ(meshfix_orient(out, in, g.index_count, g.positions, g.vertex_count, 12, NULL, NULL), MESHFIX_OK);
+        CHECK(memcmp(out, expected, g.index_count * sizeof(unsigned int)) == 0);
+    }
+    free(expected);
+    free(buffer);
+    mio_free(&g);
+}
+
+/* Counts and strides where size_t has 32 bits: an index of 0xFFFFFFFE
+   with 0xFFFFFFFF vertices made `vertex_range + 1` wrap, and 3 * 2^28
+   indices were read before the plan refused them. */
+static void test_sizes_that_wrap(void)
+{
+    static const unsigned int far_index[3] = {0, 1, 0xFFFFFFFEu};
+    if (sizeof(size_t) == 4) {
+        expect_refusal("index 0xFFFFFFFE of 0xFFFFFFFF vertices", far_index, 3, NULL, 0xFFFFFFFFu, 12,
+                       MESHFIX_ERROR_TOO_LARGE);
+        expect_refusal("3 * 2^28 indices", tetra_i, (size_t)3 << 28, tetra_p, 4, 12, MESHFIX_ERROR_TOO_LARGE);
+        CHECK_EQ(meshfix_scratch_size(0xFFFFFFFFu, 3), 0);
+    }
+    /* the last vertex's 12 bytes past the end of the address space */
+    expect_refusal("stride * (vertex_count - 1) + 12 overflows", tetra_i, 12, tetra_p, 4,
+                   (((size_t)-1) / 3) & ~(size_t)3, MESHFIX_ERROR_TOO_LARGE);
+}
+
+/* Welding with every vertex in one hash bucket (what crafted positions
+   did to the old probing table): the bucket is sorted and searched, so
+   the result is the same and the time O(n log n). */
+static void weld_one_bucket(const float *positions, size_t n, float tolerance, unsigned int *remap)
+{
+    meshfix__welder w;
+    unsigned int *block = (unsigned int *)malloc((1 + 5 * n) * sizeof(unsigned int));
+    memset(&w, 0, sizeof(w));
+    w.positions = (const char *)positions;
+    w.stride = 12;
+    w.cell = (double)tolerance * (1.0 + 1e-9);
+    w.mask = 0;
+    w.bucket_end = block;
+    w.order = block + 1;
+    w.home = w.order + n;
+    w.rep_head = w.home + n;
+    w.rep_next = w.rep_head + n;
+    meshfix__weld_run(&w, n, (double)tolerance, remap);
+    free(block);
+}
+
+static void test_weld_one_bucket(void)
+{
+    const size_t n = getenv("MESHFIX_ADVERSARIAL_N") ? (size_t)strtoul(getenv("MESHFIX_ADVERSARIAL_N"), NULL, 10) : 200000;
+    float *p = (float *)malloc(3 * n * sizeof(float));
+    unsigned int *normal = (unsigned int *)malloc(n * sizeof(unsigned int));
+    unsigned int *crowded = (unsigned int *)malloc(n * sizeof(unsigned int));
+    unsigned long long seed = 77;
+    size_t v, unique;
+    int pass;
+    for (pass = 0; pass < 2; ++pass) {
+        float tolerance = pass ? 0.004f : 0.0f;
+        for (v = 0; v < 3 * n; ++v) /* on a coarse lattice, so exact copies occur too */
+            p[v] = (float)(gen_random(&seed) % 64) / 64.0f + (pass ? (float)gen_uniform(&seed) * 0.003f : 0.0f);
+        CHECK_EQ(meshfix_weld(normal, p, n, 12, tolerance, NULL, &unique), MESHFIX_OK);
+        weld_one_bucket(p, n, tolerance, crowded);
+        CHECK(memcmp(normal, crowded, n * sizeof(unsigned int)) == 0);
+        printf("    %lu vertices in one bucket, tolerance %g: %lu clusters, same as spread\n", (unsigned long)n,
+               (double)tolerance, (unsigned long)unique);
+    }
+    free(p);
+    free(normal);
+    free(crowded);
+}
+
+/* Every triangle of a complete 3-uniform hypergraph on k vertices (each
+   edge in k - 2 triangles, so all three edges non-manifold), twice: the
+   duplicates are found through edge rings, no hash to aim at. */
+static void test_duplicates_on_crowded_edges(void)
+{
+    const unsigned int k = getenv("MESHFIX_ADVERSARIAL_N") ? 24u : 64u;
+    size_t triangles = (size_t)k * (k - 1) * (k - 2) / 6, t = 0;
+    unsigned int *idx = (unsigned int *)malloc(2 * 3 * triangles * sizeof(unsigned int));
+    float *p = (float *)malloc(3 * k * sizeof(float));
+    unsigned long long seed = 3;
+    unsigned int a, b, c;
+    meshfix_report r;
+    for (a = 0; a < 3 * k; ++a)
+        p[a] = (float)gen_uniform(&seed);
+    for (a = 0; a < k; ++a)
+        for (b = a + 1; b < k; ++b)
+            for (c = b + 1; c < k; ++c, ++t) {
+                idx[3 * t] = a, idx[3 * t + 1] = b, idx[3 * t + 2] = c;
+                /* the copy, rotated and reversed */
+                idx[3 * (triangles + t)] = c, idx[3 * (triangles + t) + 1] = b, idx[3 * (triangles + t) + 2] = a;
+            }
+    CHECK_EQ(meshfix_inspect(idx, 6 * triangles, p, k, 12, &r), MESHFIX_OK);
+    CHECK_EQ(r.triangles_duplicate, triangles);
+    CHECK_EQ(r.edges_non_manifold, (size_t)k * (k - 1) / 2);
+    free(idx);
+    free(p);
+}
+
+/* NaN, infinities and values near FLT_MAX in half the positions of a
+   soup: counted by their bit patterns (a build with -ffast-math runs this
+   suite too), weigh nothing, and the area stays finite. */
+static void test_non_finite_soup(void)
+{
+    const size_t n = 2000;
+    float *p = (float *)malloc(9 * n * sizeof(float));
+    unsigned int *idx = (unsigned int *)malloc(3 * n * sizeof(unsigned int));
+    unsigned long long seed = 9;
+    size_t v, bad = 0;
+    meshfix_report r;
+    int policy;
+    for (v = 0; v < 3 * n; ++v) {
+        int kind = (int)(gen_random(&seed) % 6);
+        float x = (float)gen_uniform(&seed), y = (float)gen_uniform(&seed), z = (float)gen_uniform(&seed);
+        if (kind == 0)
+            x = NAN;
+        else if (kind == 1)
+            y = -INFINITY;
+        else if (kind == 2)
+            z = INFINITY;
+        else if (kind == 3)
+            x = 3.4e38f, y = -3.4e38f;
+        bad += kind < 3;
+        p[3 * v] = x, p[3 * v + 1] = y, p[3 * v + 2] = z;
+        idx[v] = (unsigned int)v;
+    }
+    for (policy = 0; policy < POLICIES; ++policy) {
+        meshfix_options o = policy_options(policy);
+        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, 3 * n, 12, &o, &r), MESHFIX_OK);
+        CHECK_EQ(r.vertices_non_finite, bad);
+        CHECK(r.area - r.area == 0.0 && r.area > 0.0);
+    }
+    {
+        unsigned int remap[3];
+        const float nan_tolerance = NAN;
+        CHECK_EQ(meshfix_weld(remap, p, 3, 12, nan_tolerance, NULL, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK_EQ(meshfix_weld(remap, p, 3, 12, INFINITY, NULL, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+    }
+    free(p);
+    free(idx);
+}
+
 static const test_case tests[] = {
     {"bad input refused under every policy, nothing written", test_matrix_refusals},
     {"odd input accepted: NaN/Inf, degenerate, duplicates, edges of 3..64, empty", test_matrix_accepted},
     {"allocation failure at every allocation: OOM, no leak, nothing written", test_allocation_failure},
     {"adversarial: fan of n, n on one edge, n coincident, soup of n, 5000 shells", test_adversarial},
+    {"audit: triangles shrinking toward a point give a tree the traversal stack holds", test_deep_tree},
+    {"audit: option values out of range refused, nothing written", test_option_ranges},
+    {"audit: report sharing memory with options and scratch", test_report_shares_options},
+    {"audit: destination overlapping the indices at any shift", test_overlapping_destination},
+    {"audit: counts and strides that wrap size_t", test_sizes_that_wrap},
+    {"audit: weld with every vertex in one hash bucket", test_weld_one_bucket},
+    {"audit: duplicates among triangles whose edges are all non-manifold", test_duplicates_on_crowded_edges},
+    {"audit: NaN, Inf and FLT_MAX soup classified by bits", test_non_finite_soup},
 };
 
 int main(void)

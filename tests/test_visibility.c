@@ -701,18 +701,22 @@ static void test_watertight_rays(void)
     memset(&allocator, 0, sizeof(allocator));
     CHECK(meshfix__build_bvh(&bvh, &m, &allocator, meshfix__has_area));
     group = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
+    /* rays in the tree's frame, where its corners are */
     for (v = 0; v < g.vertex_count + g.index_count; ++v) {
-        const float centre[3] = {0.1f, -0.2f, 0.3f};
-        float target[3], d[3];
+        const float model_centre[3] = {0.1f, -0.2f, 0.3f};
+        float centre[3], target[3], d[3], a[3], b[3];
         meshfix__ray ray;
         meshfix__query q;
         int k;
+        meshfix__frame_vertex_of(&bvh, model_centre, centre);
         if (v < g.vertex_count) {
-            memcpy(target, g.positions + 3 * v, sizeof(target));
+            meshfix__frame_vertex(&bvh, &m, (unsigned int)v, target);
         } else {
             size_t h = v - g.vertex_count, next = h % 3 == 2 ? h - 2 : h + 1;
+            meshfix__frame_vertex(&bvh, &m, g.indices[h], a);
+            meshfix__frame_vertex(&bvh, &m, g.indices[next], b);
             for (k = 0; k < 3; ++k)
-                target[k] = 0.5f * (g.positions[3 * (size_t)g.indices[h] + k] + g.positions[3 * (size_t)g.indices[next] + k]);
+                target[k] = 0.5f * (a[k] + b[k]);
         }
         for (k = 0; k < 3; ++k)
             d[k] = target[k] - centre[k];
@@ -729,9 +733,11 @@ static void test_watertight_rays(void)
         rays++;
     }
     for (t = 0; t < 64; ++t) { /* from outside, pointing away: nothing */
-        const float from[3] = {5, 5, 5}, away[3] = {1, 0.5f, 0.25f};
+        const float far_away[3] = {5, 5, 5}, away[3] = {1, 0.5f, 0.25f};
+        float from[3];
         meshfix__ray ray;
         meshfix__query q;
+        meshfix__frame_vertex_of(&bvh, far_away, from);
         meshfix__setup_ray(&ray, from, away, 0.0f, 1e30f);
         q.mode = MESHFIX__ANY_HIT;
         q.skip = MESHFIX__NONE;

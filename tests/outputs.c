@@ -1,0 +1,131 @@
+/* Prints one line per (mesh, policy): a digest of everything a call
+   returns (indices, flags, patch ids, the report's counts, confidences
+   to one decimal).
+   `make test` builds it several ways (-O0, -O2, -O3 -ffast-math, clang,
+   -m32 where it installs, the scalar path) and compares the lines: the
+   output must not depend on the compiler, its flags or the word size. */
+#define MESHFIX_IMPLEMENTATION
+#include "../meshfix.h"
+#define MESHIO_IMPLEMENTATION
+#include "../examples/meshio.h"
+#define MESHGEN_IMPLEMENTATION
+#include "../examples/meshgen.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static unsigned int digest_bytes(unsigned int h, const void *data, size_t size)
+{
+    const unsigned char *p = (const unsigned char *)data;
+    size_t i;
+    for (i = 0; i < size; ++i)
+        h = (h ^ p[i]) * 16777619u;
+    return h;
+}
+
+/* The report as text: the same on every word size (its doubles rounded
+   to 6 digits: sums in another order may differ in the last bits,
+   decisions may not). */
+static unsigned int digest_report(unsigned int h, const meshfix_report *r)
+{
+    char text[256];
+    snprintf(text, sizeof(text), "%lu %lu %lu %lu %lu %lu %lu %lu %lu %lu %lu %lu %.6g %.6g",
+             (unsigned long)r->triangles_flipped, (unsigned long)r->patches, (unsigned long)r->patches_closed,
+             (unsigned long)r->patches_inside_out, (unsigned long)r->components, (unsigned long)r->edges_inconsistent,
+             (unsigned long)r->triangles_duplicate, (unsigned long)r->vertices_non_manifold,
+             (unsigned long)r->shells_inward, (unsigned long)r->rays_cast, (unsigned long)r->patches_merged,
+             (unsigned long)r->triangles_zero_area, r->area, r->signed_volume);
+    return digest_bytes(h, text, strlen(text));
+}
+
+static void run(const char *name, const mio_mesh *g)
+{
+    static const char *const names[] = {"auto", "seed", "majority", "outward", "visibility", "up"};
+    static const meshfix_policy policies[] = {MESHFIX_POLICY_AUTO,    MESHFIX_POLICY_SEED,
+                                              MESHFIX_POLICY_MAJORITY, MESHFIX_POLICY_OUTWARD,
+                                              MESHFIX_POLICY_VISIBILITY, MESHFIX_POLICY_UP};
+    size_t triangles = g->index_count / 3, p;
+    unsigned int *out = (unsigned int *)malloc(g->index_count * sizeof(unsigned int) + 4);
+    unsigned int *ids = (unsigned int *)malloc(triangles * sizeof(unsigned int) + 4);
+    unsigned char *flipped = (unsigned char *)malloc(triangles + 4);
+    float confidence[64];
+    for (p = 0; p < sizeof(names) / sizeof(names[0]); ++p) {
+        meshfix_options o;
+        meshfix_report r;
+        meshfix_result result;
+        unsigned int h = 2166136261u;
+        size_t i;
+        char text[32];
+        memset(&o, 0, sizeof(o));
+        o.policy = policies[p];
+        o.flipped = flipped;
+        o.patch_ids = ids;
+        o.patch_confidence = confidence;
+        o.patch_confidence_capacity = 64;
+        memset(confidence, 0, sizeof(confidence));
+        result = meshfix_orient(out, g->indices, g->index_count, g->positions, g->vertex_count, 12, &o, &r);
+        snprintf(text, sizeof(text), "%d", (int)result);
+        h = digest_bytes(h, text, strlen(text));
+        if (result == MESHFIX_OK) {
+            h = digest_bytes(h, out, g->index_count * sizeof(unsigned int));
+            h = digest_bytes(h, flipped, triangles);
+            h = digest_bytes(h, ids, triangles * sizeof(unsigned int));
+            /* confidences to one decimal: a measure, not a decision */
+            for (i = 0; i < 64 && i < r.patches; ++i) {
+                snprintf(text, sizeof(text), "%.1f", (double)confidence[i]);
+                h = digest_bytes(h, text, strlen(text));
+            }
+            h = digest_report(h, &r);
+        }
+        printf("%-28s %-10s %08x flipped %lu\n", name, names[p], h,
+               result == MESHFIX_OK ? (unsigned long)r.triangles_flipped : 0ul);
+    }
+    free(out);
+    free(ids);
+    free(flipped);
+}
+
+int main(void)
+{
+    mio_mesh g, t;
+    unsigned long long seed = 21;
+    size_t i;
+    if (!gen_sphere(&g, 12, 16, 0.1f, 0.2f, 0.3f, 1))
+        return 1;
+    gen_flip_random(&g, 0.3, 1, NULL);
+    run("sphere, 30% reversed", &g);
+    if (!gen_sphere(&t, 8, 10, 0.1f, 0.2f, 0.3f, 0.5f))
+        return 1;
+    gen_append(&g, &t);
+    mio_free(&t);
+    run("sphere with a cavity", &g);
+    mio_free(&g);
+    if (!gen_torus(&g, 24, 12, 1, 0.3f))
+        return 1;
+    gen_flip_random(&g, 0.6, 2, NULL);
+    run("torus, 60% reversed", &g);
+    mio_free(&g);
+    if (!gen_grid(&g, 12, 9))
+        return 1;
+    for (i = 0; i < g.vertex_count; ++i)
+        g.positions[3 * i + 2] = (float)(0.05 * gen_uniform(&seed));
+    gen_flip_random(&g, 0.2, 3, NULL);
+    run("terrain, 20% reversed", &g);
+    mio_free(&g);
+    if (!gen_mobius(&g, 30))
+        return 1;
+    run("moebius", &g);
+    mio_free(&g);
+    /* a soup of 400 triangles in a box, every corner its own vertex */
+    g.vertex_count = g.index_count = 1200;
+    g.positions = (float *)malloc(3 * g.vertex_count * sizeof(float));
+    g.indices = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+    for (i = 0; i < 3 * g.vertex_count; ++i)
+        g.positions[i] = (float)gen_uniform(&seed);
+    for (i = 0; i < g.index_count; ++i)
+        g.indices[i] = (unsigned int)i;
+    run("soup of 400", &g);
+    mio_free(&g);
+    return 0;
+}
