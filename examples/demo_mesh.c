@@ -2,6 +2,8 @@
    first triangle among them, as the plain flood fill's seed) and a torus
    beside it turned completely inside-out, as one OBJ file.
    usage: demo_mesh OUTPUT.obj */
+#define MESHFIX_IMPLEMENTATION
+#include "../meshfix.h"
 #define MESHIO_IMPLEMENTATION
 #include "meshio.h"
 #define MESHGEN_IMPLEMENTATION

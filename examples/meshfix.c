@@ -10,15 +10,28 @@
    writes OUTPUT in the format its extension names. --mark writes the
    result with face colours: flipped faces red, the others tinted by patch.
    --inspect only reports (no OUTPUT). Exit status: 0 success, 1 bad
-   arguments or file, 2 the library refused the mesh. */
+   arguments or file, 2 the library refused the mesh.
+
+   INPUT must be a regular file (a directory or FIFO is refused before it
+   is read). The outputs are written all or nothing: each goes to a new
+   temporary file next to its target, created before the input is read,
+   and the temporaries are renamed into place only after all of them were
+   written; on any failure they are removed and no target is touched.
+   POSIX (open, fdopen, rename). */
+#define _POSIX_C_SOURCE 200809L
+#define _FILE_OFFSET_BITS 64 /* stat and read files over 2 GiB on 32-bit systems */
 #define MESHFIX_IMPLEMENTATION
 #include "../meshfix.h"
 #define MESHIO_IMPLEMENTATION
 #include "meshio.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 /* the policies a file can use (SDF needs a function: see sdf_demo.c) */
 #define POLICY_NAMES 6
@@ -103,6 +116,107 @@ static unsigned char *face_colours(const unsigned char *flipped, const unsigned 
     return rgb;
 }
 
+/* An output being written: a temporary file next to `target`, renamed onto
+   it by output_commit, removed by output_discard. */
+typedef struct output_file {
+    const char *target;
+    const char *format;
+    char *temporary; /* NULL when there is none (not opened, committed or discarded) */
+    FILE *f;
+} output_file;
+
+/* Checks the target and creates its temporary; 0 (after a one-line
+   message) when the target cannot be written. */
+static int output_open(output_file *o, const char *target)
+{
+    struct stat st;
+    size_t size = strlen(target) + 64;
+    int fd = -1, k, exists;
+    memset(o, 0, sizeof(*o));
+    o->target = target;
+    if ((o->format = mio_format(target)) == NULL) {
+        fprintf(stderr, "meshfix: unknown output format '%s' (use .obj, .off, .stl or .ply)\n", target);
+        return 0;
+    }
+    exists = stat(target, &st) == 0;
+    if (exists && !S_ISREG(st.st_mode)) {
+        fprintf(stderr, "meshfix: cannot write '%s': %s\n", target,
+                S_ISDIR(st.st_mode) ? "it is a directory" : "it is not a regular file");
+        return 0;
+    }
+    /* a read-only target stays refused, as when it was written in place */
+    if (exists && access(target, W_OK) != 0) {
+        fprintf(stderr, "meshfix: cannot write '%s': %s\n", target, strerror(errno));
+        return 0;
+    }
+    if ((o->temporary = (char *)malloc(size)) == NULL) {
+        fprintf(stderr, "meshfix: out of memory\n");
+        return 0;
+    }
+    /* O_EXCL: never write through a file or link that is already there */
+    for (k = 0; k < 100 && fd < 0; ++k) {
+        snprintf(o->temporary, size, "%s.meshfix-%ld-%d.tmp", target, (long)getpid(), k);
+        fd = open(o->temporary, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd < 0 && errno != EEXIST)
+            break;
+    }
+    if (fd < 0) {
+        fprintf(stderr, "meshfix: cannot write '%s': %s\n", target, strerror(errno));
+        free(o->temporary);
+        o->temporary = NULL;
+        return 0;
+    }
+    if (exists)
+        (void)fchmod(fd, st.st_mode & 07777); /* a replaced file keeps its permissions */
+    if ((o->f = fdopen(fd, "wb")) == NULL) {
+        fprintf(stderr, "meshfix: cannot write '%s': %s\n", target, strerror(errno));
+        close(fd);
+        remove(o->temporary);
+        free(o->temporary);
+        o->temporary = NULL;
+        return 0;
+    }
+    return 1;
+}
+
+/* Writes the mesh into the temporary and closes it. */
+static int output_write(output_file *o, const mio_mesh *mesh, const unsigned char *face_rgb)
+{
+    char error[256];
+    int ok = mio_write(o->f, o->format, mesh, face_rgb, o->target, error, sizeof(error));
+    if (fclose(o->f) != 0 && ok) {
+        snprintf(error, sizeof(error), "error writing '%s'", o->target);
+        ok = 0;
+    }
+    o->f = NULL;
+    if (!ok)
+        fprintf(stderr, "meshfix: %s\n", error);
+    return ok;
+}
+
+static int output_commit(output_file *o)
+{
+    if (rename(o->temporary, o->target) != 0) {
+        fprintf(stderr, "meshfix: cannot write '%s': %s\n", o->target, strerror(errno));
+        return 0;
+    }
+    free(o->temporary);
+    o->temporary = NULL;
+    return 1;
+}
+
+/* Removes the temporary, if any is left; safe to call more than once. */
+static void output_discard(output_file *o)
+{
+    if (o->f != NULL)
+        fclose(o->f);
+    o->f = NULL;
+    if (o->temporary != NULL)
+        remove(o->temporary);
+    free(o->temporary);
+    o->temporary = NULL;
+}
+
 static int usage(void)
 {
     fprintf(stderr, "usage: meshfix [--policy auto|seed|majority|outward|visibility|up] [--weld TOLERANCE]\n"
@@ -121,9 +235,12 @@ int main(int argc, char **argv)
     meshfix_options options;
     meshfix_report before, after;
     meshfix_result r;
+    output_file out, marked;
     size_t triangles;
 
     memset(&options, 0, sizeof(options));
+    memset(&out, 0, sizeof(out));
+    memset(&marked, 0, sizeof(marked));
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--policy") == 0 && i + 1 < argc) {
             int p;
@@ -166,25 +283,32 @@ int main(int argc, char **argv)
     if (input == NULL || (output == NULL && !inspect_only))
         return usage();
 
+    /* every output must be writable before anything is read or repaired */
+    if (!inspect_only && (!output_open(&out, output) || (mark != NULL && !output_open(&marked, mark)))) {
+        output_discard(&out);
+        output_discard(&marked);
+        return 1;
+    }
     if (!mio_load(input, &mesh, error, sizeof(error))) {
         fprintf(stderr, "meshfix: %s: %s\n", input, error);
+        output_discard(&out);
+        output_discard(&marked);
         return 1;
     }
     if (weld_tolerance >= 0.0f && !weld(&mesh, weld_tolerance)) {
-        mio_free(&mesh);
-        return 2;
-    }
-    r = meshfix_inspect(mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12, &before);
-    if (r != MESHFIX_OK) {
+        status = 2;
+    } else if ((r = meshfix_inspect(mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12,
+                                    &before)) != MESHFIX_OK) {
         fprintf(stderr, "meshfix: %s: %s\n", input, meshfix_result_string(r));
-        mio_free(&mesh);
-        return 2;
-    }
-    if (!quiet)
+        status = 2;
+    } else if (!quiet) {
         print_report(input, &before);
-    if (inspect_only) {
+    }
+    if (status != 0 || inspect_only) {
+        output_discard(&out);
+        output_discard(&marked);
         mio_free(&mesh);
-        return 0;
+        return status;
     }
 
     triangles = mesh.index_count / 3;
@@ -198,23 +322,24 @@ int main(int argc, char **argv)
         fprintf(stderr, "meshfix: %s: %s\n", input, meshfix_result_string(r));
         status = 2;
     } else {
+        unsigned char *rgb = NULL;
         if (!quiet) {
             printf("repair (policy %s): flipped %lu of %lu triangles\n", policy_name(options.policy),
                    (unsigned long)after.triangles_flipped, (unsigned long)after.triangles);
             print_report(output, &after);
         }
-        if (!mio_save(output, &mesh, NULL, error, sizeof(error))) {
-            fprintf(stderr, "meshfix: %s\n", error);
+        if (mark != NULL && (rgb = face_colours(options.flipped, options.patch_ids, triangles)) == NULL) {
+            fprintf(stderr, "meshfix: out of memory\n");
             status = 1;
-        } else if (mark != NULL) {
-            unsigned char *rgb = face_colours(options.flipped, options.patch_ids, triangles);
-            if (rgb == NULL || !mio_save(mark, &mesh, rgb, error, sizeof(error))) {
-                fprintf(stderr, "meshfix: %s\n", rgb == NULL ? "out of memory" : error);
-                status = 1;
-            }
-            free(rgb);
+        } else if (!output_write(&out, &mesh, NULL) || (mark != NULL && !output_write(&marked, &mesh, rgb))) {
+            status = 1;
+        } else if (!output_commit(&out) || (mark != NULL && !output_commit(&marked))) {
+            status = 1;
         }
+        free(rgb);
     }
+    output_discard(&out);
+    output_discard(&marked);
     free(options.flipped);
     free(options.patch_ids);
     mio_free(&mesh);

@@ -71,8 +71,8 @@ int gen_sphere(mio_mesh *m, unsigned rings, unsigned segments, float cx, float c
         double theta = pi * r / rings;
         for (s = 0; s < segments; ++s) {
             double phi = 2 * pi * s / segments;
-            gen_set_vertex(m, 1 + (size_t)(r - 1) * segments + s, cx + (float)(radius * sin(theta) * cos(phi)),
-                           cy + (float)(radius * sin(theta) * sin(phi)), cz + (float)(radius * cos(theta)));
+            gen_set_vertex(m, 1 + (size_t)(r - 1) * segments + s, cx + (float)((double)radius * sin(theta) * cos(phi)),
+                           cy + (float)((double)radius * sin(theta) * sin(phi)), cz + (float)((double)radius * cos(theta)));
         }
     }
     south = 1 + (rings - 1) * segments;
@@ -102,8 +102,8 @@ int gen_torus(mio_mesh *m, unsigned n, unsigned k, float major, float minor)
         double u = 2 * pi * i / n;
         for (j = 0; j < k; ++j) {
             double v = 2 * pi * j / k;
-            double ring = major + minor * cos(v);
-            gen_set_vertex(m, (size_t)i * k + j, (float)(ring * cos(u)), (float)(ring * sin(u)), (float)(minor * sin(v)));
+            double ring = (double)major + (double)minor * cos(v);
+            gen_set_vertex(m, (size_t)i * k + j, (float)(ring * cos(u)), (float)(ring * sin(u)), (float)((double)minor * sin(v)));
         }
     }
     for (i = 0; i < n; ++i) {
@@ -126,7 +126,7 @@ int gen_grid(mio_mesh *m, unsigned nx, unsigned ny)
     for (j = 0; j <= ny; ++j)
         for (i = 0; i <= nx; ++i) {
             float x = (float)i / (float)nx, y = (float)j / (float)ny;
-            gen_set_vertex(m, (size_t)j * (nx + 1) + i, x, y, 0.1f * (float)(sin(6.0 * x) * cos(5.0 * y)));
+            gen_set_vertex(m, (size_t)j * (nx + 1) + i, x, y, 0.1f * (float)(sin(6.0 * (double)x) * cos(5.0 * (double)y)));
         }
     for (j = 0; j < ny; ++j)
         for (i = 0; i < nx; ++i) {

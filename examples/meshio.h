@@ -5,7 +5,13 @@
    with optional per-face colours). The format comes from the file
    extension. Polygons are split into triangle fans. STL stores every
    triangle with its own corners, so the reader merges corners with
-   bit-identical positions (-0 taken as 0) into shared vertices.
+   bit-identical positions (-0 taken as 0) into shared vertices, numbered
+   in the order of their first corner, with meshfix_weld (so the program
+   links meshfix.h's implementation somewhere).
+
+   mio_load reads regular files only: a directory, FIFO or device is
+   refused before anything is read from it (POSIX; on Windows it is simply
+   opened).
 
    Hostile files are expected: every count is checked against the bytes
    left, indices against the vertex count, sizes against overflow, and every
@@ -16,6 +22,7 @@
 #ifndef MESHIO_H
 #define MESHIO_H
 #include <stddef.h>
+#include <stdio.h>
 
 typedef struct mio_mesh {
     float *positions;      /* 3 floats per vertex */
@@ -31,17 +38,30 @@ int mio_save(const char *path, const mio_mesh *mesh, const unsigned char *face_r
 void mio_free(mio_mesh *mesh);
 /* Loads from memory; `format` is "obj", "off", "stl" or "ply". */
 int mio_parse(const char *data, size_t size, const char *format, mio_mesh *mesh, char *error, size_t error_size);
+/* The format a path's extension names ("obj", "off", "stl" or "ply", any
+   case), or NULL for any other extension. */
+const char *mio_format(const char *path);
+/* Writes the mesh to an open stream in `format` (as mio_format returns) and
+   flushes it; does not close it. Returns 1 when every write succeeded;
+   `name` only goes into the message. */
+int mio_write(FILE *f, const char *format, const mio_mesh *mesh, const unsigned char *face_rgb, const char *name,
+              char *error, size_t error_size);
 
 #endif
 
 #ifdef MESHIO_IMPLEMENTATION
+#include "../meshfix.h" /* meshfix_weld (include-guarded) */
 #include <ctype.h>
 #include <errno.h>
 #include <limits.h>
 #include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifndef _WIN32
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
 
 #define MIO_MAX_VERTICES 0xFFFFFFFEu
 
@@ -90,7 +110,8 @@ static int mio_grow(void **array, size_t *capacity, size_t needed, size_t elemen
 static int mio_add_vertex(mio_reader *r, const float v[3])
 {
     mio_mesh *m = r->mesh;
-    if (m->vertex_count >= MIO_MAX_VERTICES)
+    /* the second bound keeps 3 * (vertex_count + 1) floats within size_t (32-bit) */
+    if (m->vertex_count >= MIO_MAX_VERTICES || m->vertex_count >= ((size_t)-1) / (3 * sizeof(float)) - 1)
         return mio_fail(r, "too many vertices");
     if (!mio_grow((void **)&m->positions, &r->vertex_capacity, 3 * (m->vertex_count + 1), sizeof(float)))
         return mio_fail(r, "out of memory for %lu vertices", (unsigned long)m->vertex_count);
@@ -287,81 +308,128 @@ static int mio_parse_off(mio_reader *r)
 
 /* ---- STL ---- */
 
-/* Merges corners with bit-identical positions: an open-addressing table of
-   vertex ids, probed in a fixed order, so the result is deterministic. */
-typedef struct mio_welder {
-    unsigned int *slots;
-    size_t mask;
-} mio_welder;
-
-static unsigned int mio_hash_position(const float v[3])
+/* STL stores every triangle with its own three corners. The readers add
+   each corner as a vertex of its own (-0 stored as +0) and triangle t as
+   corners 3t, 3t+1, 3t+2; mio_stl_weld then merges corners with
+   bit-identical positions through meshfix_weld (tolerance 0), keeping the
+   first corner of each position, in file order. */
+static int mio_add_stl_triangle(mio_reader *r, const float corners[9])
 {
-    unsigned int h = 2166136261u, bits;
+    unsigned int first = (unsigned int)r->mesh->vertex_count;
+    float p[3];
+    int k, j;
+    for (k = 0; k < 3; ++k) {
+        for (j = 0; j < 3; ++j)
+            p[j] = corners[3 * k + j] == 0.0f ? 0.0f : corners[3 * k + j];
+        if (!mio_add_vertex(r, p))
+            return 0;
+    }
+    return mio_add_triangle(r, first, first + 1, first + 2);
+}
+
+static int mio_is_finite3(const float *p)
+{
     int k;
     for (k = 0; k < 3; ++k) {
-        float x = v[k] == 0.0f ? 0.0f : v[k];
-        memcpy(&bits, &x, 4);
-        h = (h ^ bits) * 16777619u;
-        h ^= h >> 15;
+        unsigned int bits;
+        memcpy(&bits, p + k, 4);
+        if (((bits >> 23) & 0xFFu) == 0xFFu)
+            return 0;
     }
-    return h;
-}
-
-static int mio_weld_corner(mio_reader *r, mio_welder *w, const float v[3], unsigned int *out)
-{
-    size_t i = mio_hash_position(v) & w->mask;
-    float p[3];
-    int k;
-    for (k = 0; k < 3; ++k)
-        p[k] = v[k] == 0.0f ? 0.0f : v[k];
-    for (;; i = (i + 1) & w->mask) {
-        unsigned int id = w->slots[i];
-        if (id == 0xFFFFFFFFu)
-            break;
-        if (memcmp(r->mesh->positions + 3 * (size_t)id, p, sizeof(p)) == 0) {
-            *out = id;
-            return 1;
-        }
-    }
-    *out = (unsigned int)r->mesh->vertex_count;
-    w->slots[i] = *out;
-    return mio_add_vertex(r, p);
-}
-
-static int mio_welder_init(mio_reader *r, mio_welder *w, size_t corners)
-{
-    size_t n = 1024;
-    while (n < 2 * corners && n < ((size_t)1 << 40))
-        n *= 2;
-    w->mask = n - 1;
-    w->slots = (unsigned int *)malloc(n * sizeof(unsigned int));
-    if (w->slots == NULL)
-        return mio_fail(r, "out of memory");
-    memset(w->slots, 0xFF, n * sizeof(unsigned int));
     return 1;
 }
 
-static int mio_add_stl_triangle(mio_reader *r, mio_welder *w, const float corners[9])
+static int mio_weld_failed(mio_reader *r, meshfix_result result)
 {
-    unsigned int id[3];
-    int k;
-    if (r->mesh->vertex_count + 3 > (w->mask + 1) / 2) {
-        /* the table stays at most half full: rebuild it twice as large */
-        size_t i, n = r->mesh->vertex_count;
-        free(w->slots);
-        if (!mio_welder_init(r, w, 2 * (w->mask + 1)))
-            return 0;
-        for (i = 0; i < n; ++i) {
-            size_t s = mio_hash_position(r->mesh->positions + 3 * i) & w->mask;
-            while (w->slots[s] != 0xFFFFFFFFu)
-                s = (s + 1) & w->mask;
-            w->slots[s] = (unsigned int)i;
+    if (result == MESHFIX_ERROR_OUT_OF_MEMORY)
+        return mio_fail(r, "out of memory merging %lu STL corners", (unsigned long)r->mesh->vertex_count);
+    return mio_fail(r, "cannot merge STL corners: %s", meshfix_result_string(result));
+}
+
+/* remap[v] becomes the lowest corner with v's position. meshfix_weld refuses
+   NaN and Inf, so when the file has such corners only the finite ones are
+   welded and the others stay vertices of their own: judging them is
+   meshfix's job, not the loader's. */
+static int mio_stl_remap(mio_reader *r, unsigned int *remap)
+{
+    const float *positions = r->mesh->positions;
+    size_t n = r->mesh->vertex_count, finite = 0, i, j, unique;
+    unsigned int *origin, *packed_remap;
+    float *packed;
+    meshfix_result result;
+    for (i = 0; i < n; ++i)
+        finite += (size_t)mio_is_finite3(positions + 3 * i);
+    if (finite == n) {
+        result = meshfix_weld(remap, positions, n, 3 * sizeof(float), 0.0f, NULL, &unique);
+        return result == MESHFIX_OK ? 1 : mio_weld_failed(r, result);
+    }
+    /* finite <= n, and n * 3 floats are allocated already: no overflow */
+    packed = (float *)malloc(3 * sizeof(float) * finite + 1);
+    origin = (unsigned int *)malloc(sizeof(unsigned int) * finite + 1);
+    packed_remap = (unsigned int *)malloc(sizeof(unsigned int) * finite + 1);
+    if (packed == NULL || origin == NULL || packed_remap == NULL) {
+        result = MESHFIX_ERROR_OUT_OF_MEMORY;
+    } else {
+        for (i = 0, j = 0; i < n; ++i) {
+            remap[i] = (unsigned int)i;
+            if (mio_is_finite3(positions + 3 * i)) {
+                memcpy(packed + 3 * j, positions + 3 * i, 3 * sizeof(float));
+                origin[j++] = (unsigned int)i;
+            }
+        }
+        result = meshfix_weld(packed_remap, packed, finite, 3 * sizeof(float), 0.0f, NULL, &unique);
+        if (result == MESHFIX_OK)
+            for (j = 0; j < finite; ++j)
+                remap[origin[j]] = origin[packed_remap[j]];
+    }
+    free(packed);
+    free(origin);
+    free(packed_remap);
+    return result == MESHFIX_OK ? 1 : mio_weld_failed(r, result);
+}
+
+static int mio_stl_weld(mio_reader *r)
+{
+    mio_mesh *m = r->mesh;
+    size_t n = m->vertex_count, i, unique = 0;
+    unsigned int *remap;
+    if (n == 0)
+        return 1;
+    /* n * 3 floats are allocated already, so n * sizeof(unsigned int) fits */
+    remap = (unsigned int *)malloc(sizeof(unsigned int) * n);
+    if (remap == NULL)
+        return mio_fail(r, "out of memory merging %lu STL corners", (unsigned long)n);
+    if (!mio_stl_remap(r, remap)) {
+        free(remap);
+        return 0;
+    }
+    /* keep the first corner of each position, in order; remap[v] < v is
+       already rewritten to its new index when v is reached */
+    for (i = 0; i < n; ++i) {
+        if (remap[i] > i) {
+            free(remap);
+            return mio_fail(r, "meshfix_weld returned a bad remap");
+        }
+        if (remap[i] == i) {
+            if (unique != i)
+                memcpy(m->positions + 3 * unique, m->positions + 3 * i, 3 * sizeof(float));
+            remap[i] = (unsigned int)unique++;
+        } else {
+            remap[i] = remap[remap[i]];
         }
     }
-    for (k = 0; k < 3; ++k)
-        if (!mio_weld_corner(r, w, corners + 3 * k, &id[k]))
-            return 0;
-    return mio_add_triangle(r, id[0], id[1], id[2]);
+    for (i = 0; i < m->index_count; ++i)
+        m->indices[i] = remap[m->indices[i]];
+    free(remap);
+    m->vertex_count = unique;
+    if (unique < n) {
+        float *smaller = (float *)realloc(m->positions, 3 * sizeof(float) * unique);
+        if (smaller != NULL) {
+            m->positions = smaller;
+            r->vertex_capacity = 3 * unique;
+        }
+    }
+    return 1;
 }
 
 static float mio_read_f32le(const unsigned char *p)
@@ -373,23 +441,27 @@ static float mio_read_f32le(const unsigned char *p)
     return f;
 }
 
-static int mio_parse_stl_binary(mio_reader *r, mio_welder *w)
+/* The caller checked that the file is exactly 84 + 50 * n bytes. */
+static int mio_parse_stl_binary(mio_reader *r, size_t n)
 {
     const unsigned char *p = (const unsigned char *)r->data;
-    unsigned long n = (unsigned long)p[80] | (unsigned long)p[81] << 8 | (unsigned long)p[82] << 16 |
-                      (unsigned long)p[83] << 24, i;
+    size_t i;
+    /* n <= size / 50, so 9 * n and 3 * n cannot overflow */
+    if (!mio_grow((void **)&r->mesh->positions, &r->vertex_capacity, 9 * n, sizeof(float)) ||
+        !mio_grow((void **)&r->mesh->indices, &r->index_capacity, 3 * n, sizeof(unsigned int)))
+        return mio_fail(r, "out of memory for %lu triangles", (unsigned long)n);
     for (i = 0; i < n && !r->failed; ++i) {
-        const unsigned char *facet = p + 84 + 50 * (size_t)i + 12;
+        const unsigned char *facet = p + 84 + 50 * i + 12;
         float corners[9];
         int k;
         for (k = 0; k < 9; ++k)
             corners[k] = mio_read_f32le(facet + 4 * k);
-        mio_add_stl_triangle(r, w, corners);
+        mio_add_stl_triangle(r, corners);
     }
     return !r->failed;
 }
 
-static int mio_parse_stl_ascii(mio_reader *r, mio_welder *w)
+static int mio_parse_stl_ascii(mio_reader *r)
 {
     char word[256];
     float corners[9];
@@ -406,7 +478,7 @@ static int mio_parse_stl_ascii(mio_reader *r, mio_welder *w)
         } else if (strcmp(word, "endloop") == 0) {
             if (count != 3)
                 return mio_fail(r, "facet with %d vertices", count);
-            mio_add_stl_triangle(r, w, corners);
+            mio_add_stl_triangle(r, corners);
             count = 0;
         }
     }
@@ -418,22 +490,21 @@ static int mio_parse_stl_ascii(mio_reader *r, mio_welder *w)
 static int mio_parse_stl(mio_reader *r)
 {
     size_t size = (size_t)(r->end - r->data);
-    mio_welder w;
-    int ok, binary = 0;
+    unsigned long long n = 0;
+    int binary = 0;
     if (size >= 84) {
         const unsigned char *p = (const unsigned char *)r->data;
-        unsigned long long n = (unsigned long long)p[80] | (unsigned long long)p[81] << 8 |
-                               (unsigned long long)p[82] << 16 | (unsigned long long)p[83] << 24;
-        binary = 84 + 50 * n == size;
+        n = (unsigned long long)p[80] | (unsigned long long)p[81] << 8 | (unsigned long long)p[82] << 16 |
+            (unsigned long long)p[83] << 24;
+        binary = 84 + 50 * n == (unsigned long long)size;
         if (!binary && memcmp(r->data, "solid", 5) != 0)
             return mio_fail(r, "binary STL of %lu bytes cannot hold the %llu triangles it declares",
                             (unsigned long)size, n);
     }
-    if (!mio_welder_init(r, &w, binary ? 3 * (size / 50) : size / 64))
+    /* binary: n < size / 50 fits in size_t */
+    if (!(binary ? mio_parse_stl_binary(r, (size_t)n) : mio_parse_stl_ascii(r)))
         return 0;
-    ok = binary ? mio_parse_stl_binary(r, &w) : mio_parse_stl_ascii(r, &w);
-    free(w.slots);
-    return ok;
+    return mio_stl_weld(r);
 }
 
 /* ---- PLY ---- */
@@ -498,7 +569,7 @@ static int mio_ply_value(mio_ply_reader *p, int type, double *out)
             unsigned int u = (unsigned int)bits;
             float f;
             memcpy(&f, &u, 4);
-            *out = f;
+            *out = (double)f;
         } else if (kind == 2) {
             double d;
             memcpy(&d, &bits, 8);
@@ -686,29 +757,102 @@ static const char *mio_extension(const char *path, char *out, size_t out_size)
     return out;
 }
 
-int mio_load(const char *path, mio_mesh *mesh, char *error, size_t error_size)
+/* Reads a whole regular file into a new 0-terminated buffer. */
+static int mio_read_file(const char *path, char **data_out, size_t *size_out, char *error, size_t error_size)
 {
+    char *data;
+    size_t size;
+#ifndef _WIN32
+    struct stat st;
+    size_t got = 0;
+    int fd;
+    /* O_NONBLOCK: opening a FIFO does not wait for a writer (it is refused
+       below), and nothing is read before the file is known to be regular */
+    do
+        fd = open(path, O_RDONLY | O_NONBLOCK);
+    while (fd < 0 && errno == EINTR);
+    if (fd < 0) {
+        snprintf(error, error_size, "cannot open '%s': %s", path, strerror(errno));
+        return 0;
+    }
+    if (fstat(fd, &st) != 0) {
+        snprintf(error, error_size, "cannot read '%s': %s", path, strerror(errno));
+        close(fd);
+        return 0;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        if (S_ISDIR(st.st_mode))
+            snprintf(error, error_size, "'%s' is a directory, not a mesh file", path);
+        else
+            snprintf(error, error_size, "'%s' is not a regular file (a FIFO, socket or device)", path);
+        close(fd);
+        return 0;
+    }
+    if (st.st_size < 0 || (unsigned long long)st.st_size >= (unsigned long long)((size_t)-1)) {
+        snprintf(error, error_size, "'%s' is too large to load", path);
+        close(fd);
+        return 0;
+    }
+    size = (size_t)st.st_size;
+    if ((data = (char *)malloc(size + 1)) == NULL) {
+        snprintf(error, error_size, "out of memory reading '%s' (%lu bytes)", path, (unsigned long)size);
+        close(fd);
+        return 0;
+    }
+    while (got < size) {
+        size_t chunk = size - got < ((size_t)1 << 30) ? size - got : ((size_t)1 << 30);
+        ssize_t n = read(fd, data + got, chunk);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            break;
+        got += (size_t)n;
+    }
+    close(fd);
+    if (got != size) {
+        snprintf(error, error_size, "cannot read '%s'", path);
+        free(data);
+        return 0;
+    }
+#else
     FILE *f = fopen(path, "rb");
-    char *data = NULL, ext[16];
-    long size;
-    int ok = 0;
-    memset(mesh, 0, sizeof(*mesh));
+    long length;
     if (f == NULL) {
         snprintf(error, error_size, "cannot open '%s'", path);
         return 0;
     }
-    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+    data = NULL;
+    if (fseek(f, 0, SEEK_END) != 0 || (length = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         snprintf(error, error_size, "cannot read '%s'", path);
-    } else if ((data = (char *)malloc((size_t)size + 1)) == NULL) {
+    } else if ((unsigned long)length >= (unsigned long)((size_t)-1) ||
+               (data = (char *)malloc((size_t)length + 1)) == NULL) {
         snprintf(error, error_size, "out of memory reading '%s'", path);
-    } else if (fread(data, 1, (size_t)size, f) != (size_t)size) {
+    } else if (fread(data, 1, (size_t)length, f) != (size_t)length) {
         snprintf(error, error_size, "cannot read '%s'", path);
-    } else {
-        data[size] = 0;
-        ok = mio_parse(data, (size_t)size, mio_extension(path, ext, sizeof(ext)), mesh, error, error_size);
+        free(data);
+        data = NULL;
     }
-    free(data);
     fclose(f);
+    if (data == NULL)
+        return 0;
+    size = (size_t)length;
+#endif
+    data[size] = 0;
+    *data_out = data;
+    *size_out = size;
+    return 1;
+}
+
+int mio_load(const char *path, mio_mesh *mesh, char *error, size_t error_size)
+{
+    char *data, ext[16];
+    size_t size;
+    int ok;
+    memset(mesh, 0, sizeof(*mesh));
+    if (!mio_read_file(path, &data, &size, error, error_size))
+        return 0;
+    ok = mio_parse(data, size, mio_extension(path, ext, sizeof(ext)), mesh, error, error_size);
+    free(data);
     return ok;
 }
 
@@ -790,41 +934,70 @@ static void mio_write_ply(FILE *f, const mio_mesh *m, const unsigned char *rgb)
     }
 }
 
-int mio_save(const char *path, const mio_mesh *m, const unsigned char *face_rgb, char *error, size_t error_size)
+const char *mio_format(const char *path)
 {
+    static const char *const formats[] = {"obj", "off", "stl", "ply"};
     char ext[16];
-    FILE *f;
     size_t i;
-    int ok;
     mio_extension(path, ext, sizeof(ext));
-    if (strcmp(ext, "obj") != 0 && strcmp(ext, "off") != 0 && strcmp(ext, "stl") != 0 && strcmp(ext, "ply") != 0) {
-        snprintf(error, error_size, "unknown output format '%s' (use .obj, .off, .stl or .ply)", path);
+    for (i = 0; i < sizeof(formats) / sizeof(formats[0]); ++i)
+        if (strcmp(ext, formats[i]) == 0)
+            return formats[i];
+    return NULL;
+}
+
+int mio_write(FILE *f, const char *format, const mio_mesh *m, const unsigned char *face_rgb, const char *name,
+              char *error, size_t error_size)
+{
+    size_t i;
+    if (format == NULL || (strcmp(format, "obj") != 0 && strcmp(format, "off") != 0 && strcmp(format, "stl") != 0 &&
+                           strcmp(format, "ply") != 0)) {
+        snprintf(error, error_size, "unknown output format for '%s' (use .obj, .off, .stl or .ply)", name);
         return 0;
     }
-    if ((f = fopen(path, "wb")) == NULL) {
-        snprintf(error, error_size, "cannot write '%s'", path);
-        return 0;
-    }
-    if (strcmp(ext, "obj") == 0) {
+    if (strcmp(format, "obj") == 0) {
         for (i = 0; i < m->vertex_count; ++i)
-            fprintf(f, "v %.9g %.9g %.9g\n", m->positions[3 * i], m->positions[3 * i + 1], m->positions[3 * i + 2]);
+            fprintf(f, "v %.9g %.9g %.9g\n", (double)m->positions[3 * i], (double)m->positions[3 * i + 1],
+                    (double)m->positions[3 * i + 2]);
         for (i = 0; i < m->index_count; i += 3)
             fprintf(f, "f %u %u %u\n", m->indices[i] + 1, m->indices[i + 1] + 1, m->indices[i + 2] + 1);
-    } else if (strcmp(ext, "off") == 0) {
+    } else if (strcmp(format, "off") == 0) {
         fprintf(f, "OFF\n%lu %lu 0\n", (unsigned long)m->vertex_count, (unsigned long)(m->index_count / 3));
         for (i = 0; i < m->vertex_count; ++i)
-            fprintf(f, "%.9g %.9g %.9g\n", m->positions[3 * i], m->positions[3 * i + 1], m->positions[3 * i + 2]);
+            fprintf(f, "%.9g %.9g %.9g\n", (double)m->positions[3 * i], (double)m->positions[3 * i + 1],
+                    (double)m->positions[3 * i + 2]);
         for (i = 0; i < m->index_count; i += 3)
             fprintf(f, "3 %u %u %u\n", m->indices[i], m->indices[i + 1], m->indices[i + 2]);
-    } else if (strcmp(ext, "stl") == 0) {
+    } else if (strcmp(format, "stl") == 0) {
         mio_write_stl(f, m);
     } else {
         mio_write_ply(f, m, face_rgb);
     }
-    ok = !ferror(f);
-    ok &= fclose(f) == 0;
-    if (!ok)
+    if (fflush(f) != 0 || ferror(f)) {
+        snprintf(error, error_size, "error writing '%s'", name);
+        return 0;
+    }
+    return 1;
+}
+
+int mio_save(const char *path, const mio_mesh *m, const unsigned char *face_rgb, char *error, size_t error_size)
+{
+    const char *format = mio_format(path);
+    FILE *f;
+    int ok;
+    if (format == NULL) {
+        snprintf(error, error_size, "unknown output format '%s' (use .obj, .off, .stl or .ply)", path);
+        return 0;
+    }
+    if ((f = fopen(path, "wb")) == NULL) {
+        snprintf(error, error_size, "cannot write '%s': %s", path, strerror(errno));
+        return 0;
+    }
+    ok = mio_write(f, format, m, face_rgb, path, error, error_size);
+    if (fclose(f) != 0 && ok) {
         snprintf(error, error_size, "error writing '%s'", path);
+        ok = 0;
+    }
     return ok;
 }
 
