@@ -25,16 +25,16 @@ $(B)/demo_mesh: examples/demo_mesh.c $(HEADERS) | $(B)
 SUITES = test_meshfix test_sdf test_visibility test_hostile
 FAST = -O3 -ffast-math -g
 
-$(B)/test_%: tests/test_%.c tests/check.h $(HEADERS) | $(B)
+$(B)/test_%: tests/test_%.c tests/check.h tests/internals.h $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
 
-$(B)/test_%_asan: tests/test_%.c tests/check.h $(HEADERS) | $(B)
+$(B)/test_%_asan: tests/test_%.c tests/check.h tests/internals.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ $< -lm
 
-$(B)/test_%_fast: tests/test_%.c tests/check.h $(HEADERS) | $(B)
+$(B)/test_%_fast: tests/test_%.c tests/check.h tests/internals.h $(HEADERS) | $(B)
 	$(CC) -std=c99 $(FAST) $(WARN) -o $@ $< -lm
 
-$(B)/test_%_m32: tests/test_%.c tests/check.h $(HEADERS) | $(B)
+$(B)/test_%_m32: tests/test_%.c tests/check.h tests/internals.h $(HEADERS) | $(B)
 	$(CC) -m32 -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
 
 $(B)/test_openmesh: tests/test_openmesh.cpp $(HEADERS) | $(B)

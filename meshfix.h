@@ -210,6 +210,7 @@ typedef enum meshfix_policy {
     MESHFIX_POLICY_SDF,      /* along the gradient of options.sdf (needs positions and sdf) */
     MESHFIX_POLICY_VISIBILITY, /* Borodin et al.: boundary coherence + ray-sampled visibility */
     MESHFIX_POLICY_UP,       /* each patch faces the side its normal leans to along options.up */
+    MESHFIX_POLICY_NORMALS,  /* each patch faces the way the caller's normals say (options.*_normals) */
     MESHFIX_POLICY_COUNT
 } meshfix_policy;
 
@@ -285,8 +286,23 @@ typedef struct meshfix_options {
     void (*parallel_for)(void (*task)(void *context, size_t index), void *context, size_t count, void *user);
     void *parallel_user;
     float up[3];                    /* MESHFIX_POLICY_UP axis; 0, 0, 0 = +z */
-    float *patch_confidence;        /* optional out, by patch id: 0 (a coin flip) .. 1 (clear) */
+    float *patch_confidence;        /* optional out, by patch id: the margin of its verdict, 0 .. 1 */
     size_t patch_confidence_capacity;
+    /* No evidence, no flip: a vote from rays counts only within
+       mean +- evidence_sigma standard errors (default 3); a patch whose
+       verdict has a confidence below min_confidence (default 0) is left
+       the way most of its area faces ("repair only what is certain"). */
+    float evidence_sigma;
+    float min_confidence;
+    /* Optional normals the file or the engine has (STL facet normals, OBJ
+       vn, glTF NORMAL): evidence for each patch under AUTO, the only one
+       under MESHFIX_POLICY_NORMALS. Per triangle (index_count / 3 of
+       them) or per vertex (vertex_count), x y z floats first; stride 0
+       means 12 bytes. */
+    const float *triangle_normals;
+    size_t triangle_normals_stride;
+    const float *vertex_normals;
+    size_t vertex_normals_stride;
 } meshfix_options;
 
 #define MESHFIX_VISIBILITY_COHERENCE_ONLY 1u /* merge by coherence alone; sides by majority */
@@ -325,6 +341,15 @@ typedef struct meshfix_report {
     size_t patches_merged;        /* VISIBILITY: merges into super-patches */
     size_t pairs_conflicting;     /* VISIBILITY: pairs left wound against their coherence */
     size_t shells_inward;         /* OUTWARD, AUTO: closed shells found to be cavities */
+    /* What decided each patch (AUTO, OUTWARD, VISIBILITY, NORMALS; the
+       others decide by their own rule and count as kept): */
+    size_t patches_by_volume;     /* closed or nearly closed: signed volume and nesting */
+    size_t patches_by_parity;     /* open: crossings of their own surface or of the shells around them */
+    size_t patches_by_visibility; /* rays escaping from one side */
+    size_t patches_by_normals;    /* the caller's normals */
+    size_t patches_kept;          /* no significant evidence: left facing the way most of their area faced */
+    size_t patches_doubtful;      /* verdict confidence below 0.5 (or min_confidence when higher) */
+    size_t triangles_doubtful;    /* in those patches */
 } meshfix_report;
 
 /* meshfix_check requirements; 0 means MESHFIX_REQUIRE_CONSISTENT. */
@@ -465,6 +490,12 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #if !defined(MESHFIX_DEBUG) && !defined(NDEBUG)
 #define MESHFIX_DEBUG 1
 #endif
+/* MESHFIX_TRACE((format, ...)): what the decision stage weighed, unit by
+   unit; define it as printf to read it. Double parentheses: C89 has no
+   variadic macros. */
+#ifndef MESHFIX_TRACE
+#define MESHFIX_TRACE(arguments)
+#endif
 
 #if defined(__GNUC__) || defined(__clang__)
 #define MESHFIX__PRIVATE static __attribute__((unused))
@@ -546,6 +577,33 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
            meshfix__add_size(&total, 0, 1, &plan->total) && (plan->total = total + 16) > total;
 }
 
+MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_allocator *a, size_t count, size_t size)
+{
+    /* one byte more, so that a zero-size request is not a NULL "failure" */
+    if (size != 0 && count > (((size_t)-1) - 1) / size)
+        return NULL;
+    return a->alloc_fn != NULL ? a->alloc_fn(count * size + 1, a->user_data) : MESHFIX_MALLOC(count * size + 1, a->user_data);
+}
+
+/* The caller's allocator, or the MESHFIX_MALLOC / MESHFIX_FREE defaults
+   (both NULL). */
+MESHFIX__PRIVATE void meshfix__pick_allocator(const meshfix_options *options, meshfix_allocator *allocator)
+{
+    MESHFIX_MEMSET(allocator, 0, sizeof(*allocator));
+    if (options != NULL && options->allocator.alloc_fn != NULL)
+        *allocator = options->allocator;
+}
+
+MESHFIX__PRIVATE void meshfix__release(const meshfix_allocator *a, void *p)
+{
+    if (p == NULL)
+        return;
+    if (a->free_fn != NULL)
+        a->free_fn(p, a->user_data);
+    else
+        MESHFIX_FREE(p, a->user_data);
+}
+
 /* ===== >>validate ===== */
 
 typedef struct meshfix__edge_entry {
@@ -573,7 +631,8 @@ typedef struct meshfix__mesh {
     size_t component_count;
     const meshfix_options *options; /* the SDF callbacks; may be NULL */
     int policy;                     /* < 0: inspect */
-    float *confidence;              /* per patch, from the geometric policies; may be NULL */
+    float *confidence;              /* per patch, from the geometric policies */
+    unsigned char *patch_kind;      /* per patch: MESHFIX__BY_*, from the geometric policies */
 } meshfix__mesh;
 
 /* The last vertex's x y z (12 bytes at (vertex_count - 1) * stride) lie
@@ -1387,6 +1446,8 @@ typedef struct meshfix__patch_sums {
     double sdf_vote;        /* SDF: area-weighted vote, relative frame; > 0 keeps the seed side */
     size_t sdf_evaluations;
     double normal[3];       /* area-weighted normal, relative frame */
+    double normals;         /* the caller's normals: area-weighted vote, relative frame */
+    double normals_area;    /* area of the triangles with a usable normal */
 } meshfix__patch_sums;
 
 MESHFIX__PRIVATE void meshfix__load_corner(const meshfix__mesh *m, unsigned int vertex, const double origin[3],
@@ -1491,6 +1552,65 @@ MESHFIX__PRIVATE void meshfix__load_triangle(const meshfix__mesh *m, unsigned in
     n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
 }
 
+/* The caller's normal of triangle t: its own (triangle normals), or the
+   sum of its corners' (vertex normals); 0 when it is not usable (none
+   given, zero or not finite). */
+MESHFIX__PRIVATE int meshfix__authored_normal(const meshfix__mesh *m, unsigned int t, double out[3])
+{
+    const meshfix_options *o = m->options;
+    unsigned int c;
+    int k;
+    out[0] = out[1] = out[2] = 0.0;
+    if (o->triangle_normals != NULL) {
+        size_t stride = o->triangle_normals_stride != 0 ? o->triangle_normals_stride : 3 * sizeof(float);
+        const float *n = (const float *)(const void *)((const char *)o->triangle_normals + (size_t)t * stride);
+        if (!meshfix__is_finite_point(n))
+            return 0;
+        for (k = 0; k < 3; ++k)
+            out[k] = (double)n[k];
+    } else if (o->vertex_normals != NULL) {
+        size_t stride = o->vertex_normals_stride != 0 ? o->vertex_normals_stride : 3 * sizeof(float);
+        for (c = 0; c < 3; ++c) {
+            const float *n = (const float *)(const void *)((const char *)o->vertex_normals +
+                                                            (size_t)m->indices[3 * t + c] * stride);
+            if (!meshfix__is_finite_point(n))
+                return 0;
+            for (k = 0; k < 3; ++k)
+                out[k] += (double)n[k];
+        }
+    } else {
+        return 0;
+    }
+    return out[0] != 0 || out[1] != 0 || out[2] != 0;
+}
+
+MESHFIX__PRIVATE int meshfix__normal_usable(const meshfix__mesh *m, unsigned int t)
+{
+    double n[3];
+    return meshfix__authored_normal(m, t, n);
+}
+
+/* +1 when the caller's normal of t points the way n (t's normal as
+   given) does, -1 against it, 0 when it is missing or too oblique (less
+   than 0.3 of its length along n) to say. */
+MESHFIX__PRIVATE double meshfix__normal_vote(const meshfix__mesh *m, unsigned int t, const double n[3])
+{
+    double a[3], dot, lengths;
+    if (!meshfix__authored_normal(m, t, a))
+        return 0.0;
+    dot = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+    lengths = MESHFIX_SQRT((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+    return dot > 0.3 * lengths ? 1.0 : dot < -0.3 * lengths ? -1.0 : 0.0;
+}
+
+MESHFIX__PRIVATE double meshfix__edge_length(const meshfix__mesh *m, unsigned int h)
+{
+    const float *a = meshfix__position(m, m->indices[h]);
+    const float *b = meshfix__position(m, m->indices[h % 3 == 2 ? h - 2 : h + 1]);
+    double x = (double)b[0] - (double)a[0], y = (double)b[1] - (double)a[1], z = (double)b[2] - (double)a[2];
+    return MESHFIX_SQRT(x * x + y * y + z * z);
+}
+
 MESHFIX__PRIVATE void meshfix__sum_patch(meshfix__mesh *m, unsigned int patch, meshfix__patch_sums *s)
 {
     unsigned int i, end = m->patch_start[patch + 1];
@@ -1529,6 +1649,11 @@ MESHFIX__PRIVATE void meshfix__sum_patch(meshfix__mesh *m, unsigned int patch, m
             int vote = meshfix__sdf_vote(m, t, origin, a, b, c, n, &s->sdf_evaluations);
             s->sdf_vote += (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ? -vote * area : vote * area;
         }
+        {
+            double vote = meshfix__normal_vote(m, t, n) * area;
+            s->normals += (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ? -vote : vote;
+            s->normals_area += meshfix__normal_usable(m, t) ? area : 0.0;
+        }
         if (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) {
             s->weight_reversed += area;
             s->volume_relative -= volume;
@@ -1554,58 +1679,40 @@ MESHFIX__PRIVATE int meshfix__is_closed_orientable(const meshfix__mesh *m, unsig
     return !(m->patch_bits[patch] & (MESHFIX__PATCH_OPEN | MESHFIX__PATCH_NON_ORIENTABLE));
 }
 
-/* Returns 1 when the patch should be turned over (relative to its seed). */
-MESHFIX__PRIVATE int meshfix__decide_patch(const meshfix__mesh *m, unsigned int patch,
-                                          meshfix_policy policy, const meshfix__patch_sums *s)
-{
-    if (m->patch_bits[patch] & MESHFIX__PATCH_DECIDED)
-        return (m->patch_bits[patch] & MESHFIX__PATCH_FLIP) != 0;
-    if (policy == MESHFIX_POLICY_SEED)
-        return 0;
-    if (policy == MESHFIX_POLICY_SDF && s->sdf_vote != 0.0)
-        return s->sdf_vote < 0.0;
-    if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_AUTO) && meshfix__is_closed_orientable(m, patch) &&
-        meshfix__volume_is_meaningful(s->volume_relative, s->area))
-        return s->volume_relative < 0.0;
-    /* MAJORITY: turning the patch flips the kept triangles instead of the
-       reversed ones; keep the seed side on a tie. Areas that are all zero
-       fall back to counting triangles. */
-    if (s->weight_kept + s->weight_reversed > 0.0)
-        return s->weight_kept < s->weight_reversed;
-    {
-        unsigned int i, kept = 0, reversed = 0;
-        for (i = m->patch_start[patch]; i < m->patch_start[patch + 1]; ++i) {
-            unsigned int relative = m->tri_bits[m->queue[i]] & MESHFIX__TRI_RELATIVE;
-            kept += !relative;
-            reversed += relative;
-        }
-        return kept < reversed;
-    }
-}
-
 /* ===== >>rays ===== */
 
-/* A bounding volume hierarchy over the triangles that have an area, built
-   by binned SAH, and a watertight ray/triangle test (Woop, Benthin, Wald,
-   "Watertight Ray/Triangle Intersection", JCGT 2013): rays neither leak
-   through nor hit twice at shared edges and vertices, so crossing counts
-   of closed surfaces are exact parities. */
+/* A bounding volume hierarchy in two levels: a tree over the triangles of
+   each unit (a patch, or a super-patch of them), built only when a ray
+   needs it, and a tree over the units' trees for rays through the whole
+   model. A ray that asks about one unit (its own surface, or a shell that
+   may enclose another) walks that unit's tree alone, so its cost does not
+   grow with the rest of the scene. Trees are built by binned SAH; the ray
+   test is watertight (Woop, Benthin, Wald, "Watertight Ray/Triangle
+   Intersection", JCGT 2013): rays neither leak through nor hit twice at
+   shared edges and vertices, so crossing counts of closed surfaces are
+   exact parities. */
 
 typedef struct meshfix__bvh_node {
     float bounds[6];    /* low x y z, high x y z */
-    unsigned int first; /* leaf: first slot in `order`; inner: left child (right = left + 1) */
-    unsigned int count; /* leaf: triangles; inner: 0 */
+    unsigned int first; /* inner: left child (right = left + 1); leaf: first slot; unit: its tree's root */
+    unsigned int count; /* inner: 0; leaf: triangles; a unit's tree: MESHFIX__UNIT_NODE | unit */
 } meshfix__bvh_node;
 
+#define MESHFIX__UNIT_NODE 0x80000000u
+
 typedef struct meshfix__bvh {
-    meshfix__bvh_node *nodes;
-    unsigned int node_count;
-    unsigned int *order;  /* triangle ids, leaf by leaf */
-    float *corners;       /* 9 floats per slot of `order` */
-    unsigned int count;   /* triangles in the tree */
-    float low[3], high[3];
+    meshfix__bvh_node *nodes;  /* a unit's tree at 2 * its first slot; the top tree after 2 * count */
+    unsigned int *order;       /* per slot: its triangle; the slots of a unit lie together */
+    float *corners;            /* per slot: 9 floats, the corners in the frame */
+    double *cumulative_area;   /* per slot: area of its unit's triangles up to it (sampling) */
+    unsigned int *unit_first;  /* per unit + 1: its first slot */
+    unsigned int *unit_root;   /* per unit: its tree's root, NONE until built */
+    unsigned int unit_count;
+    unsigned int count;        /* slots: triangles with an area */
+    unsigned int top;          /* root of the tree over the units, NONE until built */
+    float low[3], high[3];     /* the frame's box */
     double diagonal;
-    double center[3], scale; /* the frame: corners are (position - center) * scale */
+    double center[3], scale;   /* the frame: corners are (position - center) * scale */
 } meshfix__bvh;
 
 typedef struct meshfix__ray {
@@ -1616,33 +1723,6 @@ typedef struct meshfix__ray {
     float t_min, t_max;
 } meshfix__ray;
 
-MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_allocator *a, size_t count, size_t size)
-{
-    /* one byte more, so that a zero-size request is not a NULL "failure" */
-    if (size != 0 && count > (((size_t)-1) - 1) / size)
-        return NULL;
-    return a->alloc_fn != NULL ? a->alloc_fn(count * size + 1, a->user_data) : MESHFIX_MALLOC(count * size + 1, a->user_data);
-}
-
-/* The caller's allocator, or the MESHFIX_MALLOC / MESHFIX_FREE defaults
-   (both NULL). */
-MESHFIX__PRIVATE void meshfix__pick_allocator(const meshfix_options *options, meshfix_allocator *allocator)
-{
-    MESHFIX_MEMSET(allocator, 0, sizeof(*allocator));
-    if (options != NULL && options->allocator.alloc_fn != NULL)
-        *allocator = options->allocator;
-}
-
-MESHFIX__PRIVATE void meshfix__release(const meshfix_allocator *a, void *p)
-{
-    if (p == NULL)
-        return;
-    if (a->free_fn != NULL)
-        a->free_fn(p, a->user_data);
-    else
-        MESHFIX_FREE(p, a->user_data);
-}
-
 MESHFIX__PRIVATE void meshfix__grow_box(float low[3], float high[3], const float p[3])
 {
     int k;
@@ -1650,6 +1730,21 @@ MESHFIX__PRIVATE void meshfix__grow_box(float low[3], float high[3], const float
         low[k] = p[k] < low[k] ? p[k] : low[k];
         high[k] = p[k] > high[k] ? p[k] : high[k];
     }
+}
+
+MESHFIX__PRIVATE void meshfix__empty_box(float box[6])
+{
+    box[0] = box[1] = box[2] = 1e30f;
+    box[3] = box[4] = box[5] = -1e30f;
+}
+
+MESHFIX__PRIVATE int meshfix__box_contains(const float outer[6], const float inner[6])
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (!(outer[k] <= inner[k] && inner[3 + k] <= outer[3 + k]))
+            return 0;
+    return 1;
 }
 
 MESHFIX__PRIVATE float meshfix__box_area(const float low[3], const float high[3])
@@ -1665,35 +1760,112 @@ MESHFIX__PRIVATE float meshfix__centroid(const float *corners, int axis)
     return (float)(((double)corners[axis] + (double)corners[3 + axis] + (double)corners[6 + axis]) / 3.0);
 }
 
+/* Float geometry (the trees, rays, sample points, coherence) works in a
+   frame that maps the box of the model into [-1, 1]: re-centred, so a
+   model far from the origin keeps its small features, and scaled by a
+   power of two, which rounds nothing, so no difference or product of
+   corners can overflow a float. */
+MESHFIX__PRIVATE void meshfix__fit_frame(meshfix__bvh *b, const meshfix__mesh *m)
+{
+    double low[3] = {0, 0, 0}, high[3] = {0, 0, 0}, half = 0;
+    unsigned int t, c, seen = 0;
+    int k;
+    for (t = 0; t < m->triangle_count; ++t) {
+        if (!meshfix__has_geometry(m, t))
+            continue;
+        for (c = 0; c < 3; ++c) {
+            const float *p = meshfix__position(m, m->indices[3 * t + c]);
+            for (k = 0; k < 3; ++k) {
+                double x = (double)p[k];
+                low[k] = seen == 0 || x < low[k] ? x : low[k];
+                high[k] = seen == 0 || x > high[k] ? x : high[k];
+            }
+            seen = 1;
+        }
+    }
+    for (k = 0; k < 3; ++k) {
+        b->center[k] = 0.5 * (low[k] + high[k]);
+        half = 0.5 * (high[k] - low[k]) > half ? 0.5 * (high[k] - low[k]) : half;
+    }
+    b->scale = 1.0;
+    while (half * b->scale > 1.0)
+        b->scale *= 0.5;
+    while (half > 0 && half * b->scale <= 0.5)
+        b->scale *= 2.0;
+    b->diagonal = 0;
+    for (k = 0; k < 3; ++k) {
+        b->low[k] = (float)((low[k] - b->center[k]) * b->scale);
+        b->high[k] = (float)((high[k] - b->center[k]) * b->scale);
+        b->diagonal += ((double)b->high[k] - (double)b->low[k]) * ((double)b->high[k] - (double)b->low[k]);
+    }
+    b->diagonal = MESHFIX_SQRT(b->diagonal);
+}
+
+MESHFIX__PRIVATE void meshfix__frame_point(const meshfix__bvh *b, const float *p, double out[3])
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        out[k] = ((double)p[k] - b->center[k]) * b->scale;
+}
+
+MESHFIX__PRIVATE void meshfix__frame_float(const meshfix__bvh *b, const float *p, float out[3])
+{
+    double x[3];
+    meshfix__frame_point(b, p, x);
+    out[0] = (float)x[0], out[1] = (float)x[1], out[2] = (float)x[2];
+}
+
+MESHFIX__PRIVATE void meshfix__frame_vertex(const meshfix__bvh *b, const meshfix__mesh *m, unsigned int v, float out[3])
+{
+    meshfix__frame_float(b, meshfix__position(m, v), out);
+}
+
+/* Corners by vertex id, not by winding: a hit (and its rounding) must
+   not change when the triangle is flipped. */
+MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__bvh *b, const meshfix__mesh *m, unsigned int t,
+                                           float corners[9])
+{
+    unsigned int sorted[3], c;
+    meshfix__sorted_triangle(m, t, sorted);
+    for (c = 0; c < 3; ++c)
+        meshfix__frame_vertex(b, m, sorted[c], corners + 3 * c);
+}
+
 #define MESHFIX__BINS 12
 #define MESHFIX__LEAF 4
-/* The depth of the tree is bounded, so the traversal's fixed stack always
+/* The depth of a tree is bounded, so the traversal's fixed stack always
    holds it: SAH splits down to MESHFIX__BVH_SAH_LEVELS levels (SAH can cut
-   one triangle off a range at each level: planes at x = 2^-k for k up to
-   100 make a tree 100 deep), then halving, which adds at most 31 levels
-   for 2^31 triangles. A traversal keeps at most one pending node per
+   one triangle off a range at each level: triangles shrinking toward a
+   point make a chain as deep as they are many), then halving, which adds
+   at most 31 levels for 2^31 triangles. Two trees (over units, then in a
+   unit) lie on a path. A traversal keeps at most one pending node per
    level, plus the two it just pushed. */
 #define MESHFIX__BVH_SAH_LEVELS 28
-#define MESHFIX__BVH_STACK 64
+#define MESHFIX__BVH_STACK 128
 
-/* The bin of a centroid, clamped before the conversion: a value that is
-   not a number (found by fuzzing, from coordinates near FLT_MAX) lands in
-   bin 0 instead of being undefined behaviour. */
+/* The bin of a centroid, clamped before the conversion. */
 MESHFIX__PRIVATE unsigned int meshfix__bin(double centroid, double low, double scale)
 {
     double x = (centroid - low) * scale;
-    if (!(x >= 0.0))
+    if (x < 0.0)
         return 0;
     return x >= (double)(MESHFIX__BINS - 1) ? MESHFIX__BINS - 1 : (unsigned int)x;
 }
 
-/* While the tree is built, the 9 floats of a slot hold its triangle's box
-   (low x y z, high x y z) and centroid, each computed once; the corners
-   replace them at the end. What the build knows of a range of slots: the
-   box around its triangles and the box around their centroids. A split
-   gets both for its two halves from its bins, so no level re-reads its
-   slots to fit boxes. */
+/* A builder's primitives: per slot 9 floats (a box, low x y z and high
+   x y z, and a centroid) and an id that moves with it. What the build
+   knows of a range of slots: the box around them and the box around their
+   centroids. A split gets both for its two halves from its bins, so no
+   level re-reads its slots to fit boxes. */
 #define MESHFIX__SLOT_CENTROID 6
+typedef struct meshfix__builder {
+    float *slots;
+    unsigned int *ids;
+    meshfix__bvh_node *nodes;
+    unsigned int next_node;
+    unsigned int leaf;     /* most primitives in a leaf */
+} meshfix__builder;
+
 typedef struct meshfix__range {
     unsigned int count;
     float box[6];       /* low x y z, high x y z */
@@ -1702,12 +1874,9 @@ typedef struct meshfix__range {
 
 MESHFIX__PRIVATE void meshfix__empty_range(meshfix__range *r)
 {
-    int k;
     r->count = 0;
-    for (k = 0; k < 3; ++k) {
-        r->box[k] = 1e30f, r->box[3 + k] = -1e30f;
-        r->centroids[k] = 1e30f, r->centroids[3 + k] = -1e30f;
-    }
+    meshfix__empty_box(r->box);
+    meshfix__empty_box(r->centroids);
 }
 
 MESHFIX__PRIVATE void meshfix__range_add_slot(meshfix__range *r, const float *slot)
@@ -1729,99 +1898,34 @@ MESHFIX__PRIVATE void meshfix__range_add_range(meshfix__range *r, const meshfix_
     meshfix__grow_box(r->centroids, r->centroids + 3, other->centroids + 3);
 }
 
-/* Float geometry (the tree, rays, sample points, coherence) works in a
-   frame that maps the box of the model into [-1, 1]: re-centred, so a
-   model far from the origin keeps its small features, and scaled by a
-   power of two, which rounds nothing, so no difference or product of
-   corners can overflow a float. */
-MESHFIX__PRIVATE void meshfix__fit_frame(meshfix__bvh *b, const meshfix__mesh *m,
-                                        int (*keep)(const meshfix__mesh *m, unsigned int t))
-{
-    double low[3] = {0, 0, 0}, high[3] = {0, 0, 0}, half = 0;
-    unsigned int t, c, seen = 0;
-    int k;
-    for (t = 0; t < m->triangle_count; ++t) {
-        if (!keep(m, t))
-            continue;
-        for (c = 0; c < 3; ++c) {
-            const float *p = meshfix__position(m, m->indices[3 * t + c]);
-            for (k = 0; k < 3; ++k) {
-                double x = (double)p[k];
-                low[k] = seen == 0 || x < low[k] ? x : low[k];
-                high[k] = seen == 0 || x > high[k] ? x : high[k];
-            }
-            seen = 1;
-        }
-    }
-    for (k = 0; k < 3; ++k) {
-        b->center[k] = 0.5 * (low[k] + high[k]);
-        half = 0.5 * (high[k] - low[k]) > half ? 0.5 * (high[k] - low[k]) : half;
-    }
-    b->scale = 1.0;
-    while (half * b->scale > 1.0)
-        b->scale *= 0.5;
-    while (half > 0 && half * b->scale <= 0.5)
-        b->scale *= 2.0;
-}
-
-MESHFIX__PRIVATE void meshfix__frame_point(const meshfix__bvh *b, const float *p, double out[3])
-{
-    int k;
-    for (k = 0; k < 3; ++k)
-        out[k] = ((double)p[k] - b->center[k]) * b->scale;
-}
-
-MESHFIX__PRIVATE void meshfix__frame_vertex_of(const meshfix__bvh *b, const float *p, float out[3])
-{
-    double x[3];
-    meshfix__frame_point(b, p, x);
-    out[0] = (float)x[0], out[1] = (float)x[1], out[2] = (float)x[2];
-}
-
-MESHFIX__PRIVATE void meshfix__frame_vertex(const meshfix__bvh *b, const meshfix__mesh *m, unsigned int v, float out[3])
-{
-    meshfix__frame_vertex_of(b, meshfix__position(m, v), out);
-}
-
-/* Corners by vertex id, not by winding: a hit (and its rounding) must
-   not change when the triangle is flipped. */
-MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__bvh *b, const meshfix__mesh *m, unsigned int t,
-                                           float corners[9])
-{
-    unsigned int sorted[3], c;
-    meshfix__sorted_triangle(m, t, sorted);
-    for (c = 0; c < 3; ++c)
-        meshfix__frame_vertex(b, m, sorted[c], corners + 3 * c);
-}
-
-MESHFIX__PRIVATE void meshfix__fit_range(const meshfix__bvh *b, unsigned int first, unsigned int count,
+MESHFIX__PRIVATE void meshfix__fit_range(const meshfix__builder *k, unsigned int first, unsigned int count,
                                          meshfix__range *r)
 {
     unsigned int i;
     meshfix__empty_range(r);
     for (i = first; i < first + count; ++i)
-        meshfix__range_add_slot(r, b->corners + 9 * (size_t)i);
+        meshfix__range_add_slot(r, k->slots + 9 * (size_t)i);
 }
 
 /* Moves the slots whose centroid falls in a bin below `split` to the front;
    returns how many. */
-MESHFIX__PRIVATE unsigned int meshfix__partition(meshfix__bvh *b, unsigned int first, unsigned int count, int axis,
+MESHFIX__PRIVATE unsigned int meshfix__partition(meshfix__builder *k, unsigned int first, unsigned int count, int axis,
                                                  double low, double scale, unsigned int split)
 {
     unsigned int lo = first, hi = first + count;
     while (lo < hi) {
-        float *c = b->corners + 9 * (size_t)lo;
+        float *c = k->slots + 9 * (size_t)lo;
         if (meshfix__bin((double)c[MESHFIX__SLOT_CENTROID + axis], low, scale) < split) {
             lo++;
         } else {
             float tmp[9];
-            unsigned int id = b->order[lo];
+            unsigned int id = k->ids[lo];
             hi--;
             MESHFIX_MEMCPY(tmp, c, sizeof(tmp));
-            MESHFIX_MEMCPY(c, b->corners + 9 * (size_t)hi, sizeof(tmp));
-            MESHFIX_MEMCPY(b->corners + 9 * (size_t)hi, tmp, sizeof(tmp));
-            b->order[lo] = b->order[hi];
-            b->order[hi] = id;
+            MESHFIX_MEMCPY(c, k->slots + 9 * (size_t)hi, sizeof(tmp));
+            MESHFIX_MEMCPY(k->slots + 9 * (size_t)hi, tmp, sizeof(tmp));
+            k->ids[lo] = k->ids[hi];
+            k->ids[hi] = id;
         }
     }
     return lo - first;
@@ -1831,24 +1935,24 @@ MESHFIX__PRIVATE unsigned int meshfix__partition(meshfix__bvh *b, unsigned int f
    along the widest axis of their centroids, by the surface area
    heuristic, and describes the halves; returns the size of the left one,
    0 for a leaf. */
-MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first, const meshfix__range *r,
+MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__builder *k, unsigned int first, const meshfix__range *r,
                                              int use_sah, meshfix__range *left, meshfix__range *right)
 {
     meshfix__range bins[MESHFIX__BINS], below[MESHFIX__BINS];
     unsigned int i, best = 0, j, count = r->count, half;
     float best_cost = 1e38f;
     double scale;
-    int axis = 0, k;
-    if (count <= MESHFIX__LEAF)
+    int axis = 0, a;
+    if (count <= k->leaf)
         return 0;
-    for (k = 1; k < 3; ++k)
-        axis = r->centroids[3 + k] - r->centroids[k] > r->centroids[3 + axis] - r->centroids[axis] ? k : axis;
+    for (a = 1; a < 3; ++a)
+        axis = r->centroids[3 + a] - r->centroids[a] > r->centroids[3 + axis] - r->centroids[axis] ? a : axis;
     if (use_sah && r->centroids[3 + axis] > r->centroids[axis]) {
         scale = (double)MESHFIX__BINS / ((double)r->centroids[3 + axis] - (double)r->centroids[axis]);
         for (j = 0; j < MESHFIX__BINS; ++j)
             meshfix__empty_range(&bins[j]);
         for (i = first; i < first + count; ++i) {
-            const float *c = b->corners + 9 * (size_t)i;
+            const float *c = k->slots + 9 * (size_t)i;
             meshfix__range_add_slot(&bins[meshfix__bin((double)c[MESHFIX__SLOT_CENTROID + axis],
                                                        (double)r->centroids[axis], scale)],
                                     c);
@@ -1878,14 +1982,14 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__bvh *b, unsigned int first
             meshfix__empty_range(right);
             for (j = best; j < MESHFIX__BINS; ++j)
                 meshfix__range_add_range(right, &bins[j]);
-            return meshfix__partition(b, first, count, axis, (double)r->centroids[axis], scale, best);
+            return meshfix__partition(k, first, count, axis, (double)r->centroids[axis], scale, best);
         }
     }
     /* all centroids in one point, in one bin, or the tree already deep:
        halve by slot */
     half = count / 2;
-    meshfix__fit_range(b, first, half, left);
-    meshfix__fit_range(b, first + half, count - half, right);
+    meshfix__fit_range(k, first, half, left);
+    meshfix__fit_range(k, first + half, count - half, right);
     return half;
 }
 
@@ -1896,81 +2000,165 @@ MESHFIX__PRIVATE void meshfix__set_node(meshfix__bvh_node *n, unsigned int first
     n->count = r->count;
 }
 
-/* Builds the tree over the triangles with a finite, non-zero area (the
-   `keep` test); the arrays come from the allocator. Returns 0 when out of
-   memory. Deterministic: no randomness, splits depend only on positions
-   and triangle order. */
-MESHFIX__PRIVATE int meshfix__build_bvh(meshfix__bvh *b, const meshfix__mesh *m, const meshfix_allocator *a,
-                                       int (*keep)(const meshfix__mesh *m, unsigned int t))
+/* Builds a tree over slots [first, first + count) into nodes from
+   k->next_node on; returns its root. Deterministic: no randomness, splits
+   depend only on the slots and their order. At most 2 * count - 1 nodes. */
+MESHFIX__PRIVATE unsigned int meshfix__build_tree(meshfix__builder *k, unsigned int first, unsigned int count)
 {
-    unsigned int t, n = 0, stack[MESHFIX__BVH_STACK], level[MESHFIX__BVH_STACK], depth = 0;
+    unsigned int stack[MESHFIX__BVH_STACK], level[MESHFIX__BVH_STACK], depth = 0, root = k->next_node;
     meshfix__range ranges[MESHFIX__BVH_STACK], whole;
-    int k;
-    MESHFIX_MEMSET(b, 0, sizeof(*b));
-    meshfix__fit_frame(b, m, keep);
-    /* corners of slot i: corners[9 * i ...] */
-    for (t = 0; t < m->triangle_count; ++t)
-        n += (unsigned int)keep(m, t);
-    b->order = (unsigned int *)meshfix__allocate(a, n, sizeof(unsigned int));
-    b->corners = (float *)meshfix__allocate(a, 9 * (size_t)n, sizeof(float));
-    b->nodes = (meshfix__bvh_node *)meshfix__allocate(a, 2 * (size_t)n + 1, sizeof(meshfix__bvh_node));
-    if (b->order == NULL || b->corners == NULL || b->nodes == NULL)
-        return 0;
-    for (t = 0; t < m->triangle_count; ++t) {
-        float corners[9], *slot = b->corners + 9 * (size_t)b->count;
-        if (!keep(m, t))
-            continue;
-        meshfix__load_corners(b, m, t, corners);
-        MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
-        MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
-        meshfix__grow_box(slot, slot + 3, corners + 3);
-        meshfix__grow_box(slot, slot + 3, corners + 6);
-        for (k = 0; k < 3; ++k)
-            slot[MESHFIX__SLOT_CENTROID + k] = meshfix__centroid(corners, k);
-        b->order[b->count++] = t;
-    }
-    meshfix__fit_range(b, 0, n, &whole);
-    b->node_count = 1;
-    meshfix__set_node(&b->nodes[0], 0, &whole);
-    for (k = 0; k < 3; ++k)
-        b->low[k] = whole.box[k], b->high[k] = whole.box[3 + k];
-    for (k = 0; k < 3; ++k) {
-        double side = (double)b->high[k] - (double)b->low[k];
-        b->diagonal += n == 0 ? 0.0 : side * side;
-    }
-    b->diagonal = MESHFIX_SQRT(b->diagonal);
-    stack[depth] = 0;
+    meshfix__fit_range(k, first, count, &whole);
+    meshfix__set_node(&k->nodes[k->next_node++], first, &whole);
+    stack[depth] = root;
     level[depth] = 0;
     ranges[depth++] = whole;
     while (depth > 0) {
         meshfix__range r = ranges[--depth], left, right;
-        meshfix__bvh_node *node = &b->nodes[stack[depth]];
-        unsigned int first = node->first, split, below = level[depth] + 1;
-        split = meshfix__split(b, first, &r, level[depth] < MESHFIX__BVH_SAH_LEVELS, &left, &right);
+        meshfix__bvh_node *node = &k->nodes[stack[depth]];
+        unsigned int start = node->first, split, below = level[depth] + 1;
+        split = meshfix__split(k, start, &r, level[depth] < MESHFIX__BVH_SAH_LEVELS, &left, &right);
         if (split == 0 || split == r.count)
             continue;
-        node->first = b->node_count;
+        node->first = k->next_node;
         node->count = 0;
-        meshfix__set_node(&b->nodes[b->node_count], first, &left);
-        meshfix__set_node(&b->nodes[b->node_count + 1], first + split, &right);
-        stack[depth] = b->node_count;
+        meshfix__set_node(&k->nodes[k->next_node], start, &left);
+        meshfix__set_node(&k->nodes[k->next_node + 1], start + split, &right);
+        stack[depth] = k->next_node;
         level[depth] = below;
         ranges[depth++] = left;
-        stack[depth] = b->node_count + 1;
+        stack[depth] = k->next_node + 1;
         level[depth] = below;
         ranges[depth++] = right;
-        b->node_count += 2;
+        k->next_node += 2;
     }
-    for (t = 0; t < n; ++t)
-        meshfix__load_corners(b, m, b->order[t], b->corners + 9 * (size_t)t);
+    return root;
+}
+
+/* Sets up the slots of the triangles with an area, unit by unit (a
+   counting sort: each unit's slots in triangle order), and the frame.
+   Trees come later, per unit, as rays need them. Returns 0 when out of
+   memory. */
+MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *m, const meshfix_allocator *a,
+                                         const unsigned int *triangle_unit, unsigned int unit_count)
+{
+    unsigned int t, u, n = 0, sum = 0;
+    /* the frame was fitted before (coherence works in it too) */
+    b->unit_count = unit_count;
+    b->top = MESHFIX__NONE;
+    b->unit_first = (unsigned int *)meshfix__allocate(a, (size_t)unit_count + 1, sizeof(unsigned int));
+    b->unit_root = (unsigned int *)meshfix__allocate(a, unit_count, sizeof(unsigned int));
+    if (b->unit_first == NULL || b->unit_root == NULL)
+        return 0;
+    MESHFIX_MEMSET(b->unit_first, 0, ((size_t)unit_count + 1) * sizeof(unsigned int));
+    for (t = 0; t < m->triangle_count; ++t)
+        if (triangle_unit[t] != MESHFIX__NONE) {
+            b->unit_first[triangle_unit[t]]++;
+            n++;
+        }
+    for (u = 0; u <= unit_count; ++u) {
+        unsigned int k = u < unit_count ? b->unit_first[u] : 0;
+        b->unit_first[u] = sum;
+        sum += k;
+        if (u < unit_count)
+            b->unit_root[u] = MESHFIX__NONE;
+    }
+    b->count = n;
+    b->order = (unsigned int *)meshfix__allocate(a, n, sizeof(unsigned int));
+    b->corners = (float *)meshfix__allocate(a, 9 * (size_t)n, sizeof(float));
+    b->cumulative_area = (double *)meshfix__allocate(a, n, sizeof(double));
+    b->nodes = (meshfix__bvh_node *)meshfix__allocate(a, 2 * ((size_t)n + unit_count) + 1, sizeof(meshfix__bvh_node));
+    if (b->order == NULL || b->corners == NULL || b->cumulative_area == NULL || b->nodes == NULL)
+        return 0;
+    /* unit_first[u] moves to the end of unit u while slots are placed */
+    for (t = 0; t < m->triangle_count; ++t)
+        if (triangle_unit[t] != MESHFIX__NONE)
+            b->order[b->unit_first[triangle_unit[t]]++] = t;
+    for (u = unit_count; u > 0; --u)
+        b->unit_first[u] = b->unit_first[u - 1];
+    b->unit_first[0] = 0;
     return 1;
+}
+
+/* The tree of unit u, built the first time it is asked for; NONE when the
+   unit has no triangle with an area. Its slots hold each triangle's box
+   and centroid while it is built, its corners afterwards. */
+MESHFIX__PRIVATE unsigned int meshfix__unit_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int u)
+{
+    unsigned int first = b->unit_first[u], end = b->unit_first[u + 1], i;
+    meshfix__builder k;
+    int c;
+    if (b->unit_root[u] != MESHFIX__NONE || first == end)
+        return b->unit_root[u];
+    for (i = first; i < end; ++i) {
+        float corners[9], *slot = b->corners + 9 * (size_t)i;
+        meshfix__load_corners(b, m, b->order[i], corners);
+        MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
+        MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
+        meshfix__grow_box(slot, slot + 3, corners + 3);
+        meshfix__grow_box(slot, slot + 3, corners + 6);
+        for (c = 0; c < 3; ++c)
+            slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
+    }
+    k.slots = b->corners;
+    k.ids = b->order;
+    k.nodes = b->nodes;
+    k.next_node = 2 * first;
+    k.leaf = MESHFIX__LEAF;
+    b->unit_root[u] = meshfix__build_tree(&k, first, end - first);
+    for (i = first; i < end; ++i)
+        meshfix__load_corners(b, m, b->order[i], b->corners + 9 * (size_t)i);
+    return b->unit_root[u];
+}
+
+/* The tree over all units' trees (each unit's tree built first); its
+   leaves are unit nodes. `slots` and `ids` are scratch for one slot and
+   id per unit. */
+MESHFIX__PRIVATE unsigned int meshfix__top_tree(meshfix__bvh *b, const meshfix__mesh *m, float *slots,
+                                               unsigned int *ids)
+{
+    meshfix__builder k;
+    unsigned int u, n = 0, i, node;
+    int c;
+    if (b->top != MESHFIX__NONE)
+        return b->top;
+    for (u = 0; u < b->unit_count; ++u) {
+        unsigned int root = meshfix__unit_tree(b, m, u);
+        float *slot = slots + 9 * (size_t)n;
+        if (root == MESHFIX__NONE)
+            continue;
+        MESHFIX_MEMCPY(slot, b->nodes[root].bounds, 6 * sizeof(float));
+        for (c = 0; c < 3; ++c)
+            slot[MESHFIX__SLOT_CENTROID + c] = 0.5f * (slot[c] + slot[3 + c]);
+        ids[n++] = u;
+    }
+    if (n == 0)
+        return MESHFIX__NONE;
+    k.slots = slots;
+    k.ids = ids;
+    k.nodes = b->nodes;
+    k.next_node = 2 * b->count;
+    k.leaf = 1;
+    b->top = meshfix__build_tree(&k, 0, n);
+    /* each leaf holds one unit: it becomes that unit's node */
+    for (node = b->top; node < k.next_node; ++node) {
+        meshfix__bvh_node *x = &b->nodes[node];
+        if (x->count == 0)
+            continue;
+        i = x->first;
+        x->count = MESHFIX__UNIT_NODE | ids[i];
+        x->first = b->unit_root[ids[i]];
+    }
+    return b->top;
 }
 
 MESHFIX__PRIVATE void meshfix__free_bvh(meshfix__bvh *b, const meshfix_allocator *a)
 {
     meshfix__release(a, b->order);
     meshfix__release(a, b->corners);
+    meshfix__release(a, b->cumulative_area);
     meshfix__release(a, b->nodes);
+    meshfix__release(a, b->unit_first);
+    meshfix__release(a, b->unit_root);
     MESHFIX_MEMSET(b, 0, sizeof(*b));
 }
 
@@ -2078,18 +2266,16 @@ MESHFIX__PRIVATE float meshfix__hit_box(const meshfix__ray *r, const meshfix__bv
 }
 
 /* What a traversal looks for: the first hit, the closest, or the number of
-   hits on triangles outside one group (a crossing count for parity). */
+   surfaces crossed (a parity). */
 #define MESHFIX__ANY_HIT 0
 #define MESHFIX__CLOSEST_HIT 1
 #define MESHFIX__COUNT_HITS 2
 
 typedef struct meshfix__query {
     int mode;
-    unsigned int skip;           /* a triangle to ignore (the ray's own), or NONE */
-    const unsigned int *group;   /* COUNT_HITS: group of each triangle */
-    unsigned int skip_group;     /* COUNT_HITS: hits on this group do not count */
-    unsigned int hits;           /* COUNT_HITS: crossings, each counted once */
-    unsigned int triangle;       /* ANY / CLOSEST: the triangle hit */
+    unsigned int skip;      /* a triangle to ignore (the ray's own), or NONE */
+    unsigned int hits;      /* COUNT_HITS: crossings, each counted once */
+    unsigned int triangle;  /* ANY / CLOSEST: the triangle hit */
     float t;
 } meshfix__query;
 
@@ -2130,7 +2316,10 @@ MESHFIX__PRIVATE void meshfix__count_crossing(meshfix__crossings *c, float t, in
    square of its size. */
 #define MESHFIX__RAY_WORK 1024
 
-MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r, meshfix__query *q)
+/* Traces r through the tree below `root` (a unit's tree, or the top
+   tree). Returns 1 when it hit something (COUNT_HITS: crossed an odd or
+   even number > 0 of surfaces). */
+MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, unsigned int root, const meshfix__ray *r, meshfix__query *q)
 {
     unsigned int stack[MESHFIX__BVH_STACK], depth = 0, work = 0;
     float best = r->t_max;
@@ -2138,11 +2327,9 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
     crossings.halves = crossings.vertex_count = 0;
     q->hits = 0;
     q->triangle = MESHFIX__NONE;
-    if (b->count == 0)
+    if (root == MESHFIX__NONE || meshfix__hit_box(r, &b->nodes[root], best) < 0)
         return 0;
-    if (meshfix__hit_box(r, &b->nodes[0], best) < 0)
-        return 0;
-    stack[depth++] = 0;
+    stack[depth++] = root;
     while (depth > 0) {
         const meshfix__bvh_node *n = &b->nodes[stack[--depth]];
         unsigned int i;
@@ -2150,6 +2337,10 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
             if (q->mode == MESHFIX__ANY_HIT)
                 q->hits = 1;
             break;
+        }
+        if (n->count & MESHFIX__UNIT_NODE) {
+            stack[depth++] = n->first; /* its box is its tree's root box: tested already */
+            continue;
         }
         if (n->count == 0) {
             /* both children tested here; the nearer one is visited first */
@@ -2175,8 +2366,7 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
             if (id == q->skip || !meshfix__hit_triangle(r, b->corners + 9 * (size_t)i, &t, &zeros) || t >= best)
                 continue;
             if (q->mode == MESHFIX__COUNT_HITS) {
-                if (q->group[id] != q->skip_group)
-                    meshfix__count_crossing(&crossings, t, zeros);
+                meshfix__count_crossing(&crossings, t, zeros);
                 continue;
             }
             q->triangle = id;
@@ -2192,46 +2382,104 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, const meshfix__ray *r
     return q->hits != 0;
 }
 
-/* ===== >>visibility ===== */
-
-/* Borodin, Zachmann, Klein: each patch side gets the share of random rays,
-   shot from random points of the patch, that escape the model. Every
-   sample has its own random stream (seed, patch, sample), and results are
-   summed in sample order, so the numbers are bit-identical run to run and
-   with or without the caller's parallel_for. */
-
-MESHFIX__PRIVATE unsigned int meshfix__mix(unsigned int h)
+MESHFIX__PRIVATE int meshfix__box_overlaps(const float a[6], const float b[6])
 {
-    h ^= h >> 16;
-    h *= 0x7FEB352Du;
-    h ^= h >> 15;
-    h *= 0x846CA68Bu;
-    h ^= h >> 16;
-    return h;
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (!(a[k] <= b[3 + k] && b[k] <= a[3 + k]))
+            return 0;
+    return 1;
 }
 
-MESHFIX__PRIVATE float meshfix__random(unsigned int *state)
+/* The ids whose box contains `box` (or, with `overlapping`, meets it),
+   from a tree over boxes built with leaf size 1: a walk that enters only
+   nodes that do. Returns how many were written to out (at most
+   `capacity`; the rest are dropped). */
+MESHFIX__PRIVATE unsigned int meshfix__boxes_around(const meshfix__bvh_node *nodes, unsigned int root,
+                                                   const unsigned int *ids, const float box[6], int overlapping,
+                                                   unsigned int *out, unsigned int capacity)
 {
-    *state = meshfix__mix(*state + 0x9E3779B9u);
-    return (float)(*state >> 8) * (1.0f / 16777216.0f);
+    unsigned int stack[MESHFIX__BVH_STACK], depth = 0, found = 0, k;
+    if (root == MESHFIX__NONE)
+        return 0;
+    stack[depth++] = root;
+    while (depth > 0) {
+        const meshfix__bvh_node *n = &nodes[stack[--depth]];
+        if (!(overlapping ? meshfix__box_overlaps(n->bounds, box) : meshfix__box_contains(n->bounds, box)))
+            continue;
+        if (n->count != 0) {
+            if (found < capacity)
+                out[found++] = ids[n->first];
+            continue;
+        }
+        for (k = 0; k < 2; ++k)
+            stack[depth++] = n->first + k;
+    }
+    return found;
 }
+
+/* ===== >>units ===== */
+
+/* The geometric policies decide units: a patch, or a super-patch of
+   patches that boundary coherence joined (the merge below). A unit has
+   its own frame, its root patch's; each member patch is turned relative
+   to it. Everything known about a unit when its side is decided: */
+#define MESHFIX__OPEN 0
+#define MESHFIX__GAPPED 1        /* most of its boundary is matched inside the unit: maybe closed up to gaps */
+#define MESHFIX__NEARLY_CLOSED 2 /* gapped, and its own crossings say it has an inside and an outside */
+#define MESHFIX__CLOSED 3        /* every edge is matched inside the unit */
+
+/* The kinds of evidence, in the order they are asked (report counts) */
+#define MESHFIX__BY_NOTHING 0
+#define MESHFIX__BY_VOLUME 1     /* closed (or nearly): signed volume and nesting */
+#define MESHFIX__BY_PARITY 2     /* open: crossings of its own surface or of the shells around it */
+#define MESHFIX__BY_ESCAPE 3     /* rays that escape the model from one side (visibility) */
+#define MESHFIX__BY_NORMALS 4    /* the caller's normals */
+#define MESHFIX__BY_POLICY 5     /* the rule of a policy that looks at nothing else (seed, SDF, up) */
+
+typedef struct meshfix__unit {
+    double kept, reversed;     /* area (count without positions) facing the frame's way as given, and against */
+    double normals;            /* the caller's normals: sum of area * (+1 along, -1 against the frame) */
+    double normals_area;       /* area of triangles with a usable normal */
+    double area, volume;       /* volume in the frame, about the unit's first vertex */
+    double boundary;           /* length of its edges that are not manifold inside a patch */
+    double unmatched;          /* the part of it with no partner in the unit */
+    double origin[3];          /* volumes are taken about it: a vertex of the unit */
+    unsigned char has_origin;
+    float box[6];              /* in the frame */
+    unsigned char closed;      /* MESHFIX__CLOSED, MESHFIX__NEARLY_CLOSED, MESHFIX__GAPPED, MESHFIX__OPEN */
+    unsigned char cavity;
+    unsigned char reversed_prior; /* an open unit of a reversed scene: its majority is likely wrong */
+    unsigned char kind;        /* MESHFIX__BY_*: what gave `mean` */
+    double mean, error, weight; /* geometric vote for the frame's side in [-1, 1], its standard error, its weight */
+    unsigned int turn;         /* the verdict: 1 turns the unit over, relative to its frame */
+    float confidence;
+} meshfix__unit;
 
 typedef struct meshfix__geometry {
     meshfix__mesh *m;
     const meshfix_options *o;
     meshfix_allocator allocator;
     meshfix__bvh bvh;
-    double *patch_area;       /* per patch */
-    double *cumulative_area;  /* per queue slot: area of the patch's triangles up to it */
-    unsigned int *sample_start; /* per patch + 1: its first sample */
-    unsigned char *sample_result; /* per sample: 1 front escaped, 2 back escaped */
-    unsigned int sample_count;
     unsigned int seed;
     float t_min;
+    double sigma;               /* the significance rule: z of the confidence bounds */
+    double length_unit;         /* a length in the frame, relative to the longest side: times this is raw */
+    unsigned int unit_count;
+    unsigned int *patch_unit;   /* per patch */
+    unsigned char *patch_turn;  /* per patch: its frame relative to its unit's */
+    unsigned int *triangle_unit; /* per triangle: its unit, NONE when it has no area */
+    meshfix__unit *units;
+    float *unit_slots;          /* scratch for trees over units: 9 floats per unit */
+    unsigned int *unit_ids;
+    meshfix__bvh_node *shell_nodes; /* a tree over the boxes of closed and nearly closed units */
+    unsigned int *shell_ids;
+    unsigned int shell_root;
+    unsigned int reversed_scene; /* the closed parts were all inside out: so was the file */
 } meshfix__geometry;
 
-/* Normal of t in its patch's consistent frame (its relative bit applied);
-   *area is 0 when it is not finite. */
+/* Normal of t in its patch's consistent frame (its relative bit applied),
+   twice its area long; *area is 0 without geometry. */
 MESHFIX__PRIVATE void meshfix__relative_normal(const meshfix__mesh *m, unsigned int t, double n[3], double *area)
 {
     double a[3], b[3], c[3], origin[3] = {0, 0, 0}, s;
@@ -2252,28 +2500,85 @@ MESHFIX__PRIVATE int meshfix__has_area(const meshfix__mesh *m, unsigned int t)
     return area > 0.0;
 }
 
-/* A random point of patch p, drawn by area, and the triangle it lies on. */
-MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, unsigned int p, unsigned int *state,
-                                                   float point[3])
+/* The frame of triangle t relative to its unit's: 1 when reversed. */
+MESHFIX__PRIVATE unsigned int meshfix__unit_relative(const meshfix__geometry *g, unsigned int t)
 {
     const meshfix__mesh *m = g->m;
-    unsigned int lo = m->patch_start[p], hi = m->patch_start[p + 1] - 1, t;
-    double target = (double)meshfix__random(state) * g->patch_area[p];
-    float u = meshfix__random(state), v = meshfix__random(state), su, corners[9];
+    return (unsigned int)((m->tri_bits[t] & MESHFIX__TRI_RELATIVE) != 0) ^ g->patch_turn[m->tri_patch[t]];
+}
+
+/* ===== >>sampling ===== */
+
+/* Rays from random points of a unit, in random directions. Every sample
+   has its own random stream (seed, unit, kind, index), units are measured
+   independently and votes summed in sample order, so results are
+   bit-identical run to run and with or without the caller's parallel_for. */
+
+MESHFIX__PRIVATE unsigned int meshfix__mix(unsigned int h)
+{
+    h ^= h >> 16;
+    h *= 0x7FEB352Du;
+    h ^= h >> 15;
+    h *= 0x846CA68Bu;
+    h ^= h >> 16;
+    return h;
+}
+
+MESHFIX__PRIVATE float meshfix__random(unsigned int *state)
+{
+    *state = meshfix__mix(*state + 0x9E3779B9u);
+    return (float)(*state >> 8) * (1.0f / 16777216.0f);
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__stream(const meshfix__geometry *g, unsigned int unit, unsigned int kind,
+                                              unsigned int index)
+{
+    return meshfix__mix(g->seed ^ meshfix__mix(unit * 0x9E3779B1u ^ meshfix__mix(index * 8u + kind + 0x632BE5ABu)));
+}
+
+/* Areas of each unit's slots, cumulated, for drawing points by area. */
+MESHFIX__PRIVATE void meshfix__cumulate_areas(meshfix__geometry *g)
+{
+    meshfix__bvh *b = &g->bvh;
+    unsigned int u, i;
+    for (u = 0; u < b->unit_count; ++u) {
+        double sum = 0, n[3], area;
+        for (i = b->unit_first[u]; i < b->unit_first[u + 1]; ++i) {
+            meshfix__relative_normal(g->m, b->order[i], n, &area);
+            sum += area;
+            b->cumulative_area[i] = sum;
+        }
+    }
+}
+
+/* A random point of unit u, drawn by area, the triangle it lies on, and
+   that triangle's normal in the unit's frame. */
+MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, unsigned int u, unsigned int *state,
+                                                   float point[3], double normal[3])
+{
+    const meshfix__bvh *b = &g->bvh;
+    unsigned int lo = b->unit_first[u], hi = b->unit_first[u + 1] - 1, t;
+    double target = (double)meshfix__random(state) * b->cumulative_area[hi], area;
+    float s = meshfix__random(state), v = meshfix__random(state), su, corners[9];
     int k;
     while (lo < hi) {
         unsigned int mid = lo + (hi - lo) / 2;
-        if (g->cumulative_area[mid] <= target)
+        if (b->cumulative_area[mid] <= target)
             lo = mid + 1;
         else
             hi = mid;
     }
-    t = m->queue[lo];
+    t = b->order[lo];
     /* corners by vertex id: the point must not move when t is flipped */
-    meshfix__load_corners(&g->bvh, m, t, corners);
-    su = (float)MESHFIX_SQRT((double)u);
+    meshfix__load_corners(b, g->m, t, corners);
+    su = (float)MESHFIX_SQRT((double)s);
     for (k = 0; k < 3; ++k)
         point[k] = (1.0f - su) * corners[k] + su * (1.0f - v) * corners[3 + k] + su * v * corners[6 + k];
+    meshfix__relative_normal(g->m, t, normal, &area);
+    if (g->patch_turn[g->m->tri_patch[t]]) {
+        for (k = 0; k < 3; ++k)
+            normal[k] = -normal[k];
+    }
     return t;
 }
 
@@ -2286,119 +2591,144 @@ MESHFIX__PRIVATE void meshfix__random_direction(unsigned int *state, float d[3])
     d[2] = z;
 }
 
-/* One visibility sample: 1 when it escapes from the front side, 2 from
-   the back, 0 when the model blocks it. */
-MESHFIX__PRIVATE unsigned char meshfix__visibility_sample(const meshfix__geometry *g, unsigned int p, unsigned int i)
+/* Votes of a measurement: +1 for the unit's frame, -1 against it, 0 for
+   none. The significance rule: the mean vote m = (plus - minus) / n has
+   the standard error sqrt(s^2 / n), s^2 its sample variance (at least
+   1 / n, so that a few unanimous votes are not taken as certain); a
+   vote counts as evidence within m +- sigma * error. */
+typedef struct meshfix__votes {
+    unsigned int n, plus, minus;
+} meshfix__votes;
+
+MESHFIX__PRIVATE double meshfix__vote_mean(const meshfix__votes *v)
 {
-    unsigned int state = meshfix__mix(g->seed ^ meshfix__mix(p * 0x9E3779B1u ^ meshfix__mix(i + 0x632BE5ABu)));
-    float point[3], d[3];
-    double n[3], area;
+    return v->n ? ((double)v->plus - (double)v->minus) / (double)v->n : 0.0;
+}
+
+MESHFIX__PRIVATE double meshfix__vote_error(const meshfix__votes *v)
+{
+    double n = (double)v->n, m = meshfix__vote_mean(v), s2;
+    if (v->n == 0)
+        return 1.0;
+    s2 = ((double)v->plus + (double)v->minus) / n - m * m;
+    s2 = s2 > 1.0 / n ? s2 : 1.0 / n;
+    return MESHFIX_SQRT(s2 / n);
+}
+
+MESHFIX__PRIVATE void meshfix__add_vote(meshfix__votes *v, int vote)
+{
+    v->n++;
+    v->plus += (unsigned int)(vote > 0);
+    v->minus += (unsigned int)(vote < 0);
+}
+
+/* A side is inside when its ray crosses the surfaces asked about an odd
+   number of times (or, for escape, hits anything). The pair votes for the
+   frame when its front side is outside and its back side inside. */
+MESHFIX__PRIVATE int meshfix__side_vote(int front_inside, int back_inside)
+{
+    return front_inside == back_inside ? 0 : back_inside ? 1 : -1;
+}
+
+/* Crossings of a ray with the trees of the units in `list`. */
+MESHFIX__PRIVATE unsigned int meshfix__crossings_of(const meshfix__geometry *g, const meshfix__ray *ray,
+                                                   const unsigned int *list, unsigned int count, unsigned int skip)
+{
+    unsigned int i, hits = 0;
+    meshfix__query q;
+    q.mode = MESHFIX__COUNT_HITS;
+    q.skip = skip;
+    for (i = 0; i < count; ++i) {
+        meshfix__trace(&g->bvh, g->bvh.unit_root[list[i]], ray, &q);
+        hits += q.hits;
+    }
+    return hits;
+}
+
+/* One sample of unit u: a point, a direction d, and a ray each way. Kind
+   PARITY counts crossings of `list` (the unit itself, or the shells that
+   may enclose it); ESCAPE asks whether anything at all blocks the ray. */
+MESHFIX__PRIVATE int meshfix__sample_sides(const meshfix__geometry *g, unsigned int u, unsigned int kind,
+                                          unsigned int index, const unsigned int *list, unsigned int count)
+{
+    unsigned int state = meshfix__stream(g, u, kind, index), t, side;
+    float point[3], d[3], back[3];
+    double n[3];
+    int inside[2];
     meshfix__ray ray;
     meshfix__query q;
-    unsigned int t = meshfix__sample_point(g, p, &state, point);
+    t = meshfix__sample_point(g, u, &state, point, n);
     meshfix__random_direction(&state, d);
-    meshfix__relative_normal(g->m, t, n, &area);
-    meshfix__setup_ray(&ray, point, d, g->t_min, 1e30f);
-    q.mode = MESHFIX__ANY_HIT;
-    q.skip = t;
-    if (meshfix__trace(&g->bvh, &ray, &q))
-        return 0;
-    return n[0] * (double)d[0] + n[1] * (double)d[1] + n[2] * (double)d[2] >= 0 ? 1 : 2;
-}
-
-#define MESHFIX__CHUNK 256
-MESHFIX__PRIVATE void meshfix__visibility_chunk(void *context, size_t chunk)
-{
-    const meshfix__geometry *g = (const meshfix__geometry *)context;
-    unsigned int first = (unsigned int)(chunk * MESHFIX__CHUNK), end = first + MESHFIX__CHUNK, p = 0, lo, hi, s;
-    end = end > g->sample_count ? g->sample_count : end;
-    /* the patch of the first sample: binary search in sample_start */
-    lo = 0, hi = (unsigned int)g->m->patch_count;
-    while (lo + 1 < hi) {
-        unsigned int mid = (lo + hi) / 2;
-        if (g->sample_start[mid] <= first)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    p = lo;
-    for (s = first; s < end; ++s) {
-        while (s >= g->sample_start[p + 1])
-            p++;
-        g->sample_result[s] = meshfix__visibility_sample(g, p, s - g->sample_start[p]);
-    }
-}
-
-/* Samples per patch: proportional to area within the budget, at least a
-   floor each; when the floors alone would exceed the budget, strictly by
-   area (small patches may get none: they tie and fall back to majority). */
-MESHFIX__PRIVATE void meshfix__plan_samples(meshfix__geometry *g, double total_area)
-{
-    const meshfix_options *o = g->o;
-    size_t patches = g->m->patch_count, budget, floor_count, p, sum = 0, spread;
-    budget = o->visibility_rays != 0 ? o->visibility_rays : patches * 128;
-    if (o->visibility_rays == 0)
-        budget = budget < 65536 ? 65536 : budget > 1048576 ? 1048576 : budget;
-    floor_count = o->visibility_min_samples != 0 ? o->visibility_min_samples : 16;
-    if (floor_count > budget / (patches ? patches : 1))
-        floor_count = budget / (patches ? patches : 1);
-    spread = budget - floor_count * patches;
-    for (p = 0; p < patches; ++p) {
-        double share = total_area > 0 ? g->patch_area[p] / total_area : 0.0;
-        size_t n = g->patch_area[p] > 0 ? floor_count + (size_t)((double)spread * share) : 0;
-        g->sample_start[p] = (unsigned int)sum;
-        sum += n;
-    }
-    g->sample_start[patches] = (unsigned int)sum;
-    g->sample_count = (unsigned int)sum;
-}
-
-MESHFIX__PRIVATE int meshfix__measure_visibility(meshfix__geometry *g, double *front, double *back)
-{
-    size_t chunks, c, p;
-    g->sample_result = (unsigned char *)meshfix__allocate(&g->allocator, g->sample_count, 1);
-    if (g->sample_result == NULL)
-        return 0;
-    chunks = ((size_t)g->sample_count + MESHFIX__CHUNK - 1) / MESHFIX__CHUNK;
-    if (g->o->parallel_for != NULL)
-        g->o->parallel_for(meshfix__visibility_chunk, g, chunks, g->o->parallel_user);
-    else
-        for (c = 0; c < chunks; ++c)
-            meshfix__visibility_chunk(g, c);
-    for (p = 0; p < g->m->patch_count; ++p) {
-        unsigned int s, n = g->sample_start[p + 1] - g->sample_start[p], f = 0, b = 0;
-        for (s = g->sample_start[p]; s < g->sample_start[p + 1]; ++s) {
-            f += g->sample_result[s] == 1;
-            b += g->sample_result[s] == 2;
+    back[0] = -d[0], back[1] = -d[1], back[2] = -d[2];
+    for (side = 0; side < 2; ++side) {
+        meshfix__setup_ray(&ray, point, side ? back : d, g->t_min, 1e30f);
+        if (kind == MESHFIX__BY_ESCAPE) {
+            q.mode = MESHFIX__ANY_HIT;
+            q.skip = t;
+            inside[side] = meshfix__trace(&g->bvh, g->bvh.top, &ray, &q);
+        } else {
+            inside[side] = (int)(meshfix__crossings_of(g, &ray, list, count, t) & 1u);
         }
-        front[p] = n ? (double)f / n : 0.0;
-        back[p] = n ? (double)b / n : 0.0;
     }
-    return 1;
+    /* inside[0] is the side d points to */
+    if (n[0] * (double)d[0] + n[1] * (double)d[1] + n[2] * (double)d[2] >= 0)
+        return meshfix__side_vote(inside[0], inside[1]);
+    return meshfix__side_vote(inside[1], inside[0]);
+}
+
+/* Nesting: +1 when a ray from u crosses the enclosing candidates an odd
+   number of times (u lies inside them), -1 when even. */
+MESHFIX__PRIVATE int meshfix__sample_nesting(const meshfix__geometry *g, unsigned int u, unsigned int index,
+                                            const unsigned int *list, unsigned int count)
+{
+    unsigned int state = meshfix__stream(g, u, 7, index);
+    float point[3], d[3];
+    double n[3];
+    meshfix__ray ray;
+    meshfix__sample_point(g, u, &state, point, n);
+    meshfix__random_direction(&state, d);
+    meshfix__setup_ray(&ray, point, d, g->t_min, 1e30f);
+    return (meshfix__crossings_of(g, &ray, list, count, MESHFIX__NONE) & 1u) ? 1 : -1;
 }
 
 /* ===== >>coherence ===== */
 
-/* Closest boundary edges of different patches within a search distance,
-   found through a hash grid; the local coherence of two edges is
-   -sgn(s) sqrt(|s|) / (1 + d), s the dot product of the edges (each run
-   the way its patch's consistent frame runs it), d their distance, all
-   lengths divided by the longest side of the bounding box. Patches that
-   meet at a non-manifold edge are coherent at distance 0. Local values are
-   summed per pair of patches. */
+/* Borodin et al.: boundary edges of different patches that run alongside
+   each other say how the patches are wound relative to each other. Each
+   boundary edge finds the edge of another patch that runs closest along
+   it (a hash grid of cells at least the search distance wide); two
+   edges give the local coherence -sgn(s) sqrt(|s|) / (1 + d), s the dot
+   product of the edges as their patches' frames run them, d their
+   distance, lengths relative to the longest side of the box. At an edge
+   of three or more triangles, each triangle pairs with the ones beside it
+   in the order they lie around the edge. Coherences are summed per pair
+   of patches. Two sheets stacked on each other (their triangles on the
+   same side of the edges) whose edges run the same way are two surfaces
+   facing the same way, not one surface wound against itself: such a pair
+   says nothing. */
 
 typedef struct meshfix__pair {
     unsigned int a, b;     /* patches, a < b */
     unsigned int low, high; /* the vertices of the edge that gave it: a canonical order for sums */
-    double c, length;      /* coherence and the length of the edges that gave it */
+    double c, length;      /* coherence, and the most it could be (c / length in [-1, 1]) */
 } meshfix__pair;
 
 typedef struct meshfix__segment {
-    double p[3], q[3];     /* the positions of its lower and higher vertex */
+    double p[3], q[3];     /* its lower and higher vertex, in the frame, over the longest side */
+    double inward[3];      /* toward its triangle's third corner, across the edge, unit length */
     double sign;           /* +1 when the patch's frame runs it from p to q */
+    double length;
     unsigned int patch;
     unsigned int low, high; /* its vertices: ties break on these, not on winding or order */
+    unsigned int partner;  /* the segment of another patch closest alongside, NONE */
+    double distance;       /* to it */
+    unsigned char matched; /* its partner gave a pair */
 } meshfix__segment;
+
+MESHFIX__PRIVATE double meshfix__dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 MESHFIX__PRIVATE void meshfix__edge_segment(const meshfix__geometry *g, unsigned int h, double scale,
                                            meshfix__segment *s)
@@ -2406,6 +2736,7 @@ MESHFIX__PRIVATE void meshfix__edge_segment(const meshfix__geometry *g, unsigned
     const meshfix__mesh *m = g->m;
     unsigned int t = h / 3, next = h % 3 == 2 ? h - 2 : h + 1;
     int reverse = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) != 0, k;
+    double apex[3], along[3], len2, proj, across;
     /* geometry by vertex id, winding as a sign: distances and their
        rounding must not depend on which way the input ran the edge */
     s->low = m->indices[h] < m->indices[next] ? m->indices[h] : m->indices[next];
@@ -2413,21 +2744,29 @@ MESHFIX__PRIVATE void meshfix__edge_segment(const meshfix__geometry *g, unsigned
     s->sign = ((m->indices[h] < m->indices[next]) != reverse) ? 1.0 : -1.0;
     meshfix__frame_point(&g->bvh, meshfix__position(m, s->low), s->p);
     meshfix__frame_point(&g->bvh, meshfix__position(m, s->high), s->q);
+    meshfix__frame_point(&g->bvh, meshfix__position(m, meshfix__apex(m, h)), apex);
     for (k = 0; k < 3; ++k) {
         s->p[k] *= scale;
         s->q[k] *= scale;
+        apex[k] = apex[k] * scale - s->p[k];
+        along[k] = s->q[k] - s->p[k];
     }
+    len2 = meshfix__dot3(along, along);
+    s->length = MESHFIX_SQRT(len2);
+    proj = len2 > 0 ? meshfix__dot3(apex, along) / len2 : 0.0;
+    for (k = 0; k < 3; ++k)
+        s->inward[k] = apex[k] - proj * along[k];
+    across = MESHFIX_SQRT(meshfix__dot3(s->inward, s->inward));
+    for (k = 0; k < 3; ++k)
+        s->inward[k] = across > 0 ? s->inward[k] / across : 0.0;
     s->patch = m->tri_patch[t];
+    s->partner = MESHFIX__NONE;
+    s->matched = 0;
 }
 
 MESHFIX__PRIVATE int meshfix__segment_before(const meshfix__segment *x, const meshfix__segment *y)
 {
     return x->low < y->low || (x->low == y->low && (x->high < y->high || (x->high == y->high && x->patch < y->patch)));
-}
-
-MESHFIX__PRIVATE double meshfix__dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 MESHFIX__PRIVATE double meshfix__point_segment_distance(const double x[3], const meshfix__segment *f)
@@ -2472,16 +2811,27 @@ MESHFIX__PRIVATE double meshfix__local_coherence(const meshfix__segment *e, cons
     return (s > 0 ? -1.0 : s < 0 ? 1.0 : 0.0) * MESHFIX_SQRT(s < 0 ? -s : s) / (1.0 + d);
 }
 
+/* Stacked sheets: their triangles lie on the same side of the edges (they
+   fold back onto each other). Two surfaces, not one: whichever way each
+   is wound, the pair says nothing about it. */
+MESHFIX__PRIVATE int meshfix__stacked(const meshfix__segment *e, const meshfix__segment *f)
+{
+    return meshfix__dot3(e->inward, f->inward) > 0.5;
+}
+
+/* A pair of patches from two edges: their coherence, and the most it
+   could be, sqrt(|e| |f|) (parallel edges at distance 0), so that the
+   summed c / length of a pair of patches lies in [-1, 1]. */
 MESHFIX__PRIVATE void meshfix__add_pair(meshfix__pair *pairs, size_t *count, const meshfix__segment *from,
-                                        unsigned int other_patch, double c, double length)
+                                        const meshfix__segment *to, double c)
 {
     meshfix__pair *p = &pairs[(*count)++];
-    p->a = from->patch < other_patch ? from->patch : other_patch;
-    p->b = from->patch < other_patch ? other_patch : from->patch;
+    p->a = from->patch < to->patch ? from->patch : to->patch;
+    p->b = from->patch < to->patch ? to->patch : from->patch;
     p->low = from->low;
     p->high = from->high;
     p->c = c;
-    p->length = length;
+    p->length = MESHFIX_SQRT(from->length * to->length);
 }
 
 #define MESHFIX__NEAREST_CANDIDATES 128
@@ -2512,9 +2862,8 @@ MESHFIX__PRIVATE void meshfix__segment_cells(const meshfix__grid *grid, const me
 }
 
 /* Cell ranges are walked with a double counter: past 2^52, ++x would not
-   move (found by fuzzing: an edge of a zero-area triangle far outside the
-   model). Such an edge, or one spanning many cells, neither enters the
-   grid nor searches it. */
+   move. An edge that spans many cells neither enters the grid nor
+   searches it. */
 MESHFIX__PRIVATE int meshfix__cells_usable(const double lo[3], const double hi[3])
 {
     int k;
@@ -2592,78 +2941,95 @@ MESHFIX__PRIVATE int meshfix__pair_strength_before(const meshfix__pair *x, const
     return cx > cy || (cx == cy && meshfix__pair_patches_before(x, y));
 }
 
-/* Coherence of every pair of patches that have close boundaries or share a
-   non-manifold edge; returns the pairs, summed per pair of patches, in
-   *count (0 pairs is fine), or NULL when out of memory. */
-MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g, size_t *count)
-{
-    meshfix__mesh *m = g->m;
-    const meshfix_options *o = g->o;
-    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count), n = 0, i;
-    double longest = 0, scale, reach, average = 0, longest_edge = 0;
+/* What the coherence stage hands on: the boundary segments (each with its
+   partner), and the pairs of patches with their summed coherence. */
+typedef struct meshfix__coherence {
     meshfix__segment *segments;
-    meshfix__pair *pairs, *tmp;
-    meshfix__grid grid;
-    size_t buckets = 16, pair_count = 0, out = 0, k;
-    int axis;
-    for (axis = 0; axis < 3; ++axis)
-        longest = meshfix__maxd(longest, (double)g->bvh.high[axis] - (double)g->bvh.low[axis]);
-    scale = longest > 0 ? 1.0 / longest : 1.0;
-    reach = o->coherence_distance > 0 ? (double)o->coherence_distance : 0.02;
-    for (h = 0; h < half_edges; ++h)
-        n += (m->mate[h] == MESHFIX__NONE || meshfix__is_ring(m->mate[h])) && meshfix__has_geometry(m, h / 3);
-    segments = (meshfix__segment *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__segment));
-    pairs = (meshfix__pair *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__pair));
-    tmp = (meshfix__pair *)meshfix__allocate(&g->allocator, n, sizeof(meshfix__pair));
-    MESHFIX_MEMSET(&grid, 0, sizeof(grid));
-    if (segments == NULL || pairs == NULL || tmp == NULL)
-        goto fail;
-    /* boundary edges first (they search), then ring members */
-    n = 0;
-    for (h = 0; h < half_edges; ++h)
-        if (m->mate[h] == MESHFIX__NONE && meshfix__has_geometry(m, h / 3)) {
-            double len;
-            meshfix__edge_segment(g, h, scale, &segments[n]);
-            len = MESHFIX_SQRT((segments[n].q[0] - segments[n].p[0]) * (segments[n].q[0] - segments[n].p[0]) +
-                               (segments[n].q[1] - segments[n].p[1]) * (segments[n].q[1] - segments[n].p[1]) +
-                               (segments[n].q[2] - segments[n].p[2]) * (segments[n].q[2] - segments[n].p[2]));
-            average += len;
-            longest_edge = len > longest_edge ? len : longest_edge;
-            n++;
+    unsigned int segment_count;
+    meshfix__pair *pairs;
+    size_t pair_count;
+} meshfix__coherence;
+
+/* Stage 1: every boundary edge of a triangle with geometry, in the
+   frame scaled by 1 / scale, triangle by triangle and, in a triangle, by
+   vertex id: flipping a triangle renumbers its half-edges, and the order
+   of the segments must not depend on the winding (it decides which
+   candidates a crowded search looks at). */
+MESHFIX__PRIVATE unsigned int meshfix__collect_segments(const meshfix__geometry *g, double scale,
+                                                        meshfix__segment *segments)
+{
+    const meshfix__mesh *m = g->m;
+    unsigned int t, n = 0, c, sorted[3];
+    for (t = 0; t < m->triangle_count; ++t) {
+        if (!meshfix__has_area(m, t))
+            continue;
+        meshfix__sorted_triangle(m, t, sorted);
+        for (c = 0; c < 3; ++c) {
+            /* the edges (s0, s1), (s0, s2), (s1, s2), each by its half-edge */
+            unsigned int a = sorted[c == 2 ? 1 : 0], b = sorted[c == 0 ? 1 : 2], h;
+            for (h = 3 * t; h < 3 * t + 3; ++h) {
+                unsigned int next = h % 3 == 2 ? h - 2 : h + 1;
+                if ((m->indices[h] == a && m->indices[next] == b) || (m->indices[h] == b && m->indices[next] == a))
+                    break;
+            }
+            if (m->mate[h] == MESHFIX__NONE)
+                meshfix__edge_segment(g, h, scale, &segments[n++]);
         }
-    if (n != 0) {
-        average /= n;
-        grid.cell = reach > average ? reach : average;
-        /* a cell at least a quarter of the longest edge: no edge's box
-           covers more than 5 x 5 x 5 cells */
-        grid.cell = grid.cell > longest_edge / 4 ? grid.cell : longest_edge / 4;
-        while (buckets < 2 * (size_t)n)
-            buckets *= 2;
-        grid.mask = buckets - 1;
-        grid.start = (unsigned int *)meshfix__allocate(&g->allocator, buckets + 1, sizeof(unsigned int));
-        if (grid.start == NULL)
-            goto fail;
-        MESHFIX_MEMSET(grid.start, 0, (buckets + 1) * sizeof(unsigned int));
-        meshfix__grid_pass(&grid, segments, n, 0);
-        for (k = 0; k < buckets; ++k)
-            grid.start[k + 1] += grid.start[k];
-        grid.items = (unsigned int *)meshfix__allocate(&g->allocator, grid.start[buckets], sizeof(unsigned int));
-        if (grid.items == NULL)
-            goto fail;
-        meshfix__grid_pass(&grid, segments, n, 1); /* start[b] now ends bucket b */
     }
+    return n;
+}
+
+/* Stage 2: a hash grid of cells at least the search distance and a
+   quarter of the longest edge wide, so no edge's box covers more than
+   5 x 5 x 5 cells. Returns 0 when out of memory. */
+MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix__segment *segments,
+                                            unsigned int n, double reach, meshfix__grid *grid)
+{
+    double average = 0, longest_edge = 0;
+    size_t buckets = 16, k;
+    unsigned int i;
     for (i = 0; i < n; ++i) {
-        double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = reach, length;
+        average += segments[i].length;
+        longest_edge = meshfix__maxd(longest_edge, segments[i].length);
+    }
+    average /= n;
+    grid->cell = meshfix__maxd(meshfix__maxd(reach, average), longest_edge / 4);
+    while (buckets < 2 * (size_t)n)
+        buckets *= 2;
+    grid->mask = buckets - 1;
+    grid->start = (unsigned int *)meshfix__allocate(&g->allocator, buckets + 1, sizeof(unsigned int));
+    if (grid->start == NULL)
+        return 0;
+    MESHFIX_MEMSET(grid->start, 0, (buckets + 1) * sizeof(unsigned int));
+    meshfix__grid_pass(grid, segments, n, 0);
+    for (k = 0; k < buckets; ++k)
+        grid->start[k + 1] += grid->start[k];
+    grid->items = (unsigned int *)meshfix__allocate(&g->allocator, grid->start[buckets], sizeof(unsigned int));
+    if (grid->items == NULL)
+        return 0;
+    meshfix__grid_pass(grid, segments, n, 1); /* start[b] now ends bucket b */
+    return 1;
+}
+
+/* Stage 3: each segment's partner, the segment of another patch that
+   runs closest alongside it within `reach`: first in the cells the
+   segment touches, then in the margin around them, and at most
+   MESHFIX__NEAREST_CANDIDATES segments in all, so that where thousands of
+   boundary edges crowd one place (a huge fan, a soup of large triangles)
+   the search stays linear; what it drops is far. */
+MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigned int n, const meshfix__grid *grid,
+                                            double reach)
+{
+    unsigned int i;
+    for (i = 0; i < n; ++i) {
+        meshfix__segment *s = &segments[i];
+        double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = reach;
         unsigned int best_id = MESHFIX__NONE, looked = 0;
         int ring;
-        meshfix__segment_cells(&grid, &segments[i], reach, lo, hi);
-        meshfix__segment_cells(&grid, &segments[i], 0.0, inner_lo, inner_hi);
+        meshfix__segment_cells(grid, s, reach, lo, hi);
+        meshfix__segment_cells(grid, s, 0.0, inner_lo, inner_hi);
         if (!meshfix__cells_usable(lo, hi))
             continue;
-        /* the cells the edge touches first, then the margin around them, and
-           at most MESHFIX__NEAREST_CANDIDATES edges in all: where thousands
-           of boundary edges crowd one place (a huge fan, a soup of large
-           triangles) the search stays linear, and what it drops is far */
         for (ring = 0; ring < 2; ++ring)
             for (x = lo[0]; x <= hi[0]; ++x)
                 for (y = lo[1]; y <= hi[1]; ++y)
@@ -2673,14 +3039,14 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
                                     z >= inner_lo[2] && z <= inner_hi[2];
                         if (inner != (ring == 0))
                             continue;
-                        bucket = meshfix__grid_bucket(&grid, x, y, z);
-                        for (j = bucket == 0 ? 0 : grid.start[bucket - 1];
-                             j < grid.start[bucket] && looked < MESHFIX__NEAREST_CANDIDATES; ++j, ++looked) {
-                            unsigned int f = grid.items[j];
+                        bucket = meshfix__grid_bucket(grid, x, y, z);
+                        for (j = bucket == 0 ? 0 : grid->start[bucket - 1];
+                             j < grid->start[bucket] && looked < MESHFIX__NEAREST_CANDIDATES; ++j, ++looked) {
+                            unsigned int f = grid->items[j];
                             double d;
-                            if (segments[f].patch == segments[i].patch)
+                            if (segments[f].patch == s->patch)
                                 continue;
-                            d = meshfix__segment_distance(&segments[i], &segments[f]);
+                            d = meshfix__segment_distance(s, &segments[f]);
                             if (d < best || (d == best && (best_id == MESHFIX__NONE ||
                                                            meshfix__segment_before(&segments[f], &segments[best_id])))) {
                                 best = d;
@@ -2688,41 +3054,175 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
                             }
                         }
                     }
-        if (best_id == MESHFIX__NONE)
-            continue;
-        length = MESHFIX_SQRT((segments[i].q[0] - segments[i].p[0]) * (segments[i].q[0] - segments[i].p[0]) +
-                              (segments[i].q[1] - segments[i].p[1]) * (segments[i].q[1] - segments[i].p[1]) +
-                              (segments[i].q[2] - segments[i].p[2]) * (segments[i].q[2] - segments[i].p[2]));
-        meshfix__add_pair(pairs, &pair_count, &segments[i], segments[best_id].patch,
-                          meshfix__local_coherence(&segments[i], &segments[best_id], best), length);
+        s->partner = best_id;
+        s->distance = best;
     }
-    /* patches around a non-manifold edge: each ring member with the next
-       member of another patch, at distance 0 */
+}
+
+/* Stage 4: the pairs the partners give. A boundary edge with no real
+   counterpart (a hole, a sliver) still finds the nearest edge across the
+   way, whose own partner is much closer: such a choice is dropped (kept
+   only when it is mutual, or not much farther than the partner's own),
+   and so is a choice between stacked sheets. */
+MESHFIX__PRIVATE void meshfix__pair_partners(meshfix__segment *segments, unsigned int n, meshfix__pair *pairs,
+                                            size_t *pair_count)
+{
+    unsigned int i;
+    for (i = 0; i < n; ++i) {
+        meshfix__segment *s = &segments[i], *f;
+        double c;
+        if (s->partner == MESHFIX__NONE)
+            continue;
+        f = &segments[s->partner];
+        c = meshfix__local_coherence(s, f, s->distance);
+        if ((f->partner != i && s->distance > 2.0 * f->distance + 0.05 * s->length) || meshfix__stacked(s, f)) {
+            s->matched = 0;
+            continue;
+        }
+        s->matched = 1;
+        meshfix__add_pair(pairs, pair_count, s, f, c);
+    }
+}
+
+/* Where the triangle of half-edge h lies around its edge: an angle in
+   [0, 4) on the circle of directions normal to the edge (quadrant plus a
+   monotone fraction: no trigonometry, and the same on every machine),
+   taken by the direction of its third corner in the basis u, v. */
+MESHFIX__PRIVATE double meshfix__angle_around(const meshfix__geometry *g, unsigned int h, const double u[3],
+                                             const double v[3], const double origin[3])
+{
+    double apex[3], x, y, ax, ay;
+    int k;
+    meshfix__frame_point(&g->bvh, meshfix__position(g->m, meshfix__apex(g->m, h)), apex);
+    for (k = 0; k < 3; ++k)
+        apex[k] -= origin[k];
+    x = meshfix__dot3(apex, u), y = meshfix__dot3(apex, v);
+    ax = x < 0 ? -x : x, ay = y < 0 ? -y : y;
+    if (ax + ay == 0)
+        return 0.0;
+    if (x >= 0 && y >= 0)
+        return y / (ax + ay);
+    if (x < 0 && y >= 0)
+        return 1.0 + ax / (ax + ay);
+    if (x < 0)
+        return 2.0 + ay / (ax + ay);
+    return 3.0 + ax / (ax + ay);
+}
+
+typedef struct meshfix__ring_order {
+    const double *angle; /* per ring member, by position */
+    const unsigned int *members;
+} meshfix__ring_order;
+
+MESHFIX__PRIVATE int meshfix__angle_before(const void *context, unsigned int a, unsigned int b)
+{
+    const meshfix__ring_order *r = (const meshfix__ring_order *)context;
+    return r->angle[a] < r->angle[b] || (r->angle[a] == r->angle[b] && r->members[a] < r->members[b]);
+}
+
+/* Whether a ring can be wound without contradiction: the members in
+   radial order, each with the next, disagree an even number of times.
+   Turning a member over changes two of those, so the count's parity does
+   not depend on how the input was wound. A sheet attached to a surface
+   (a T: a baffle on a duct's wall, three members) always contradicts
+   itself: its pairs say nothing. */
+MESHFIX__PRIVATE int meshfix__ring_windable(const double *c, unsigned int n)
+{
+    unsigned int i, against = 0;
+    for (i = 0; i < n; ++i)
+        against += c[i] < 0;
+    return against % 2 == 0;
+}
+
+/* Stage 5: at an edge of three or more triangles, each member pairs with
+   the one beside it around the edge (radial order), the only neighbour
+   a surface can continue into: pairing members by their order in memory
+   joined touching bodies wound correctly as if they were wound against
+   each other. `work` holds positions, `angle` the angles of one ring. */
+MESHFIX__PRIVATE void meshfix__ring_pairs(const meshfix__geometry *g, double scale, unsigned int *work, double *angle,
+                                         unsigned int *members, meshfix__pair *pairs, size_t *pair_count)
+{
+    const meshfix__mesh *m = g->m;
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
     for (h = 0; h < half_edges; ++h) {
-        unsigned int first, cur;
+        meshfix__ring_order order;
+        double p[3], q[3], axis[3], u[3], v[3], len;
+        unsigned int n = 0, cur, i;
+        int k;
         if (!meshfix__is_ring_last(m, h))
             continue;
-        first = m->mate[h] & ~MESHFIX__RING;
-        for (cur = first;; cur = m->mate[cur] & ~MESHFIX__RING) {
-            unsigned int next = m->mate[cur] & ~MESHFIX__RING;
-            meshfix__segment a, b;
-            if (meshfix__has_geometry(m, cur / 3) && meshfix__has_geometry(m, next / 3)) {
-                meshfix__edge_segment(g, cur, scale, &a);
-                meshfix__edge_segment(g, next, scale, &b);
-                if (a.patch != b.patch) {
-                    double length = MESHFIX_SQRT((a.q[0] - a.p[0]) * (a.q[0] - a.p[0]) +
-                                                 (a.q[1] - a.p[1]) * (a.q[1] - a.p[1]) +
-                                                 (a.q[2] - a.p[2]) * (a.q[2] - a.p[2]));
-                    meshfix__add_pair(pairs, &pair_count, &a, b.patch, meshfix__local_coherence(&a, &b, 0.0), length);
-                }
-            }
-            if (cur == h)
-                break;
+        cur = h;
+        do {
+            cur = m->mate[cur] & ~MESHFIX__RING;
+            if (meshfix__has_area(m, cur / 3))
+                members[n++] = cur;
+        } while (cur != h);
+        if (n < 2)
+            continue;
+        {
+            unsigned int next = members[0] % 3 == 2 ? members[0] - 2 : members[0] + 1;
+            unsigned int lo = m->indices[members[0]] < m->indices[next] ? m->indices[members[0]] : m->indices[next];
+            unsigned int hi = m->indices[members[0]] < m->indices[next] ? m->indices[next] : m->indices[members[0]];
+            meshfix__frame_point(&g->bvh, meshfix__position(m, lo), p);
+            meshfix__frame_point(&g->bvh, meshfix__position(m, hi), q);
+        }
+        for (k = 0; k < 3; ++k)
+            axis[k] = q[k] - p[k];
+        len = MESHFIX_SQRT(meshfix__dot3(axis, axis));
+        if (!(len > 0))
+            continue;
+        for (k = 0; k < 3; ++k)
+            axis[k] /= len;
+        /* u: any unit vector normal to the axis; v = axis x u */
+        k = (axis[0] < 0 ? -axis[0] : axis[0]) < 0.6 ? 0 : 1;
+        u[0] = k == 0 ? 0.0 : -axis[2], u[1] = k == 0 ? axis[2] : 0.0, u[2] = k == 0 ? -axis[1] : axis[0];
+        len = MESHFIX_SQRT(meshfix__dot3(u, u));
+        for (k = 0; k < 3; ++k)
+            u[k] /= len;
+        v[0] = axis[1] * u[2] - axis[2] * u[1];
+        v[1] = axis[2] * u[0] - axis[0] * u[2];
+        v[2] = axis[0] * u[1] - axis[1] * u[0];
+        for (i = 0; i < n; ++i) {
+            angle[i] = meshfix__angle_around(g, members[i], u, v, p);
+            work[i] = i;
+        }
+        order.angle = angle;
+        order.members = members;
+        meshfix__sort_ids(work, n, meshfix__angle_before, &order);
+        /* faces that coincide (two bodies touching along a face) have no
+           order around the edge that winding could not change: the ring
+           says nothing */
+        for (i = 0; i + 1 < n && angle[work[i]] != angle[work[i + 1]]; ++i) {
+        }
+        if (i + 1 < n)
+            continue;
+        /* angle[i] now holds the coherence of the i-th and the next */
+        for (i = 0; i < n; ++i) {
+            meshfix__segment sa, sb;
+            meshfix__edge_segment(g, members[work[i]], scale, &sa);
+            meshfix__edge_segment(g, members[work[(i + 1) % n]], scale, &sb);
+            angle[i] = meshfix__local_coherence(&sa, &sb, 0.0);
+        }
+        if (n > 2 && !meshfix__ring_windable(angle, n))
+            continue;
+        for (i = 0; i < n && !(n == 2 && i == 1); ++i) {
+            unsigned int next = (i + 1) % n;
+            meshfix__segment sa, sb;
+            meshfix__edge_segment(g, members[work[i]], scale, &sa);
+            meshfix__edge_segment(g, members[work[next]], scale, &sb);
+            if (sa.patch != sb.patch && !meshfix__stacked(&sa, &sb))
+                meshfix__add_pair(pairs, pair_count, &sa, &sb, angle[i]);
         }
     }
-    /* sum per pair of patches */
-    meshfix__sort_pairs(pairs, tmp, pair_count, meshfix__pair_key_before);
-    for (k = 0; k < pair_count; ++k) {
+}
+
+/* Stage 6: one pair per two patches, coherences and lengths summed in a
+   canonical order, strongest first. */
+MESHFIX__PRIVATE size_t meshfix__sum_pairs(meshfix__pair *pairs, meshfix__pair *tmp, size_t n)
+{
+    size_t k, out = 0;
+    meshfix__sort_pairs(pairs, tmp, n, meshfix__pair_key_before);
+    for (k = 0; k < n; ++k) {
         if (out > 0 && pairs[out - 1].a == pairs[k].a && pairs[out - 1].b == pairs[k].b) {
             pairs[out - 1].c += pairs[k].c;
             pairs[out - 1].length += pairs[k].length;
@@ -2731,38 +3231,96 @@ MESHFIX__PRIVATE meshfix__pair *meshfix__measure_coherence(meshfix__geometry *g,
         }
     }
     meshfix__sort_pairs(pairs, tmp, out, meshfix__pair_strength_before);
-    meshfix__release(&g->allocator, segments);
+    return out;
+}
+
+/* The largest ring: the scratch of the radial sort. */
+MESHFIX__PRIVATE unsigned int meshfix__largest_ring(const meshfix__mesh *m)
+{
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count), largest = 0;
+    for (h = 0; h < half_edges; ++h) {
+        unsigned int n = 0, cur = h;
+        if (!meshfix__is_ring_last(m, h))
+            continue;
+        do {
+            cur = m->mate[cur] & ~MESHFIX__RING;
+            n++;
+        } while (cur != h);
+        largest = n > largest ? n : largest;
+    }
+    return largest;
+}
+
+/* The whole stage: segments, partners, ring neighbours, sums. Returns 0
+   when out of memory. */
+MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__coherence *out)
+{
+    meshfix__mesh *m = g->m;
+    const meshfix_options *o = g->o;
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count), boundary = 0, rings = 0, largest;
+    double longest = 0, scale, reach;
+    meshfix__pair *tmp = NULL;
+    meshfix__grid grid;
+    unsigned int *work = NULL, *members = NULL;
+    double *angle = NULL;
+    int axis, ok = 0;
+    MESHFIX_MEMSET(out, 0, sizeof(*out));
+    MESHFIX_MEMSET(&grid, 0, sizeof(grid));
+    for (axis = 0; axis < 3; ++axis)
+        longest = meshfix__maxd(longest, (double)g->bvh.high[axis] - (double)g->bvh.low[axis]);
+    scale = longest > 0 ? 1.0 / longest : 1.0;
+    g->length_unit = (longest > 0 ? longest : 1.0) / g->bvh.scale;
+    reach = o->coherence_distance > 0 ? (double)o->coherence_distance : 0.02;
+    for (h = 0; h < half_edges; ++h) {
+        boundary += m->mate[h] == MESHFIX__NONE;
+        rings += (unsigned int)meshfix__is_ring(m->mate[h]);
+    }
+    largest = meshfix__largest_ring(m);
+    out->segments = (meshfix__segment *)meshfix__allocate(&g->allocator, boundary, sizeof(meshfix__segment));
+    out->pairs = (meshfix__pair *)meshfix__allocate(&g->allocator, (size_t)boundary + rings, sizeof(meshfix__pair));
+    tmp = (meshfix__pair *)meshfix__allocate(&g->allocator, (size_t)boundary + rings, sizeof(meshfix__pair));
+    work = (unsigned int *)meshfix__allocate(&g->allocator, largest, sizeof(unsigned int));
+    members = (unsigned int *)meshfix__allocate(&g->allocator, largest, sizeof(unsigned int));
+    angle = (double *)meshfix__allocate(&g->allocator, largest, sizeof(double));
+    if (!out->segments || !out->pairs || !tmp || !work || !members || !angle)
+        goto done;
+    out->segment_count = meshfix__collect_segments(g, scale, out->segments);
+    if (out->segment_count != 0) {
+        if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, &grid))
+            goto done;
+        meshfix__find_partners(out->segments, out->segment_count, &grid, reach);
+        meshfix__pair_partners(out->segments, out->segment_count, out->pairs, &out->pair_count);
+    }
+    meshfix__ring_pairs(g, scale, work, angle, members, out->pairs, &out->pair_count);
+    out->pair_count = meshfix__sum_pairs(out->pairs, tmp, out->pair_count);
+    ok = 1;
+done:
     meshfix__release(&g->allocator, tmp);
+    meshfix__release(&g->allocator, work);
+    meshfix__release(&g->allocator, members);
+    meshfix__release(&g->allocator, angle);
     meshfix__release(&g->allocator, grid.start);
     meshfix__release(&g->allocator, grid.items);
-    *count = out;
-    return pairs;
-fail:
-    meshfix__release(&g->allocator, segments);
-    meshfix__release(&g->allocator, pairs);
-    meshfix__release(&g->allocator, tmp);
-    meshfix__release(&g->allocator, grid.start);
-    meshfix__release(&g->allocator, grid.items);
-    return NULL;
+    return ok;
+}
+
+MESHFIX__PRIVATE void meshfix__free_coherence(meshfix__geometry *g, meshfix__coherence *c)
+{
+    meshfix__release(&g->allocator, c->segments);
+    meshfix__release(&g->allocator, c->pairs);
+    MESHFIX_MEMSET(c, 0, sizeof(*c));
 }
 
 /* ===== >>merge ===== */
 
-/* Greedy merge into super-patches (Borodin et al. 3.5). Pairs are taken by
-   |c|, strongest first; a union-find with orientation parity holds the
-   super-patches. Each super-patch keeps its visibility (vf >= vb in its
-   current frame) and area. Conforming pairs merge, each side to its more
-   visible face; conflicting pairs merge along the coherence when it is
-   strong (|c| / l > C0), or when one side's visibility hardly matters
-   (both below eps_v, or their ratio below k_v); otherwise they stay apart.
-   Unlike the paper, a merged super-patch keeps its members' pairs rather
-   than summing them into new ones: the queue is sorted once, O(P log P). */
-
+/* Super-patches: a union-find with orientation parity. Each node's
+   frame is stored relative to its parent's; a root's `turn` is its frame
+   relative to its own patch's consistent frame. */
 typedef struct meshfix__merge {
     unsigned int *parent;
     unsigned char *parity;  /* frame of a node relative to its parent */
     unsigned char *turn;    /* roots: frame relative to their own patch's consistent frame */
-    double *front, *back, *area;
+    double *front, *back, *area; /* VISIBILITY: escape shares and area per super-patch */
 } meshfix__merge;
 
 MESHFIX__PRIVATE unsigned int meshfix__merge_find(meshfix__merge *g, unsigned int p, unsigned int *parity)
@@ -2792,44 +3350,79 @@ MESHFIX__PRIVATE unsigned int meshfix__merge_turn(meshfix__merge *g, unsigned in
     return parity ^ g->turn[root];
 }
 
-MESHFIX__PRIVATE int meshfix__hardly_visible(double vmax, double vmin, double eps, double kv)
-{
-    return (vmin > eps && vmax / vmin < kv) || (vmin < eps && vmax < eps);
-}
-
-/* Joins the super-patches of A and B, turned by flip_a and flip_b, with
-   the visibility front/back of the result. */
+/* Joins the super-patches of A and B, turned by flip_a and flip_b. */
 MESHFIX__PRIVATE void meshfix__join(meshfix__merge *g, unsigned int a, unsigned int b, unsigned int flip_a,
-                                   unsigned int flip_b, double front, double back)
+                                   unsigned int flip_b)
 {
     unsigned int root = a < b ? a : b, child = a < b ? b : a;
     g->turn[a] ^= (unsigned char)flip_a;
     g->turn[b] ^= (unsigned char)flip_b;
     g->parent[child] = root;
     g->parity[child] = (unsigned char)(g->turn[child] ^ g->turn[root]);
-    g->area[root] = g->area[a] + g->area[b];
-    g->front[root] = front;
-    g->back[root] = back;
+    if (g->area != NULL)
+        g->area[root] = g->area[a] + g->area[b];
+}
+
+/* The coherence of a pair between the super-patches as they are turned
+   now; sets *a and *b to their roots. */
+MESHFIX__PRIVATE double meshfix__pair_coherence(meshfix__merge *g, const meshfix__pair *pair, unsigned int *a,
+                                               unsigned int *b)
+{
+    unsigned int pa, pb;
+    *a = meshfix__merge_find(g, pair->a, &pa);
+    *b = meshfix__merge_find(g, pair->b, &pb);
+    return pair->c * ((pa ^ g->turn[*a]) ? -1.0 : 1.0) * ((pb ^ g->turn[*b]) ? -1.0 : 1.0);
+}
+
+/* AUTO and OUTWARD: coherence alone joins, strongest pairs first, the
+   pairs whose edges run closely along each other (|c| / l above 0.9:
+   within a few degrees, across a gap small next to the edges). The rule
+   does not look at how the input is wound, so the units and their
+   members' relative turns are the same for any winding of the input, and
+   a second repair finds what the first left. Returns the joins. */
+#define MESHFIX__JOIN_STRENGTH 0.9
+MESHFIX__PRIVATE size_t meshfix__merge_by_coherence(meshfix__merge *g, const meshfix__pair *pairs, size_t count)
+{
+    size_t i, joins = 0;
+    for (i = 0; i < count; ++i) {
+        unsigned int a, b;
+        double c = meshfix__pair_coherence(g, &pairs[i], &a, &b);
+        if (a == b || !(pairs[i].length > 0) || MESHFIX_FABS(c) <= MESHFIX__JOIN_STRENGTH * pairs[i].length)
+            continue;
+        meshfix__join(g, a, b, 0, c < 0);
+        joins++;
+    }
+    return joins;
+}
+
+MESHFIX__PRIVATE int meshfix__hardly_visible(double vmax, double vmin, double eps, double kv)
+{
+    return (vmin > eps && vmax / vmin < kv) || (vmin < eps && vmax < eps);
 }
 
 typedef struct meshfix__merge_params {
     double c0, eps, kv;
-    int use_visibility, use_coherence;
+    int use_visibility;
 } meshfix__merge_params;
 
-/* Decides one pair; returns 1 when it merged. */
-MESHFIX__PRIVATE int meshfix__merge_pair(meshfix__merge *g, const meshfix__pair *pair, const meshfix__merge_params *k)
+/* VISIBILITY: the greedy merge of Borodin et al. 3.5. Each super-patch
+   keeps its visibility (front and back escape shares in its current frame)
+   and area. Conforming pairs merge, each side to its more visible face;
+   conflicting pairs merge along the coherence when it is strong
+   (|c| / l > C0), or when one side's visibility hardly matters (both below
+   eps_v, or their ratio below k_v); otherwise they stay apart. Unlike the
+   paper, a merged super-patch keeps its members' pairs rather than summing
+   them into new ones: the queue is sorted once, O(P log P). Returns 1 when
+   it merged. */
+MESHFIX__PRIVATE int meshfix__merge_borodin(meshfix__merge *g, const meshfix__pair *pair, const meshfix__merge_params *k)
 {
-    unsigned int pa, pb, a = meshfix__merge_find(g, pair->a, &pa), b = meshfix__merge_find(g, pair->b, &pb);
-    double c, area, va_max, va_min, vb_max, vb_min, v1, v2;
-    unsigned int fa, fb, flip_to_cohere;
-    if (a == b || pair->c == 0.0)
+    unsigned int a, b, fa, fb, flip_to_cohere;
+    double c = meshfix__pair_coherence(g, pair, &a, &b), area, va_max, va_min, vb_max, vb_min, v1, v2;
+    if (a == b || c == 0.0)
         return 0; /* already one; or edges at right angles, which say nothing */
-    /* the coherence between the two super-patches as they are now turned */
-    c = pair->c * ((pa ^ g->turn[a]) ? -1.0 : 1.0) * ((pb ^ g->turn[b]) ? -1.0 : 1.0);
     flip_to_cohere = c < 0; /* turn one of them over to make c positive */
     if (!k->use_visibility) {
-        meshfix__join(g, a, b, 0, flip_to_cohere, 0, 0);
+        meshfix__join(g, a, b, 0, flip_to_cohere);
         return 1;
     }
     area = g->area[a] + g->area[b];
@@ -2848,87 +3441,682 @@ MESHFIX__PRIVATE int meshfix__merge_pair(meshfix__merge *g, const meshfix__pair 
     vb_max = meshfix__maxd(g->front[b], g->back[b]), vb_min = meshfix__mind(g->front[b], g->back[b]);
     if ((fa ^ fb ^ flip_to_cohere) == 0) {
         /* conforming: both to their more visible side, and coherent */
-        meshfix__join(g, a, b, fa, fb, (va_max * g->area[a] + vb_max * g->area[b]) / area,
-                      (va_min * g->area[a] + vb_min * g->area[b]) / area);
-        return 1;
+        v1 = (va_max * g->area[a] + vb_max * g->area[b]) / area;
+        v2 = (va_min * g->area[a] + vb_min * g->area[b]) / area;
+        meshfix__join(g, a, b, fa, fb);
+    } else {
+        v1 = (va_max * g->area[a] + vb_min * g->area[b]) / area; /* A to its best side, B follows */
+        v2 = (va_min * g->area[a] + vb_max * g->area[b]) / area; /* B to its best side, A follows */
+        if (!((pair->length > 0 && (c < 0 ? -c : c) / pair->length > k->c0) ||
+              (meshfix__hardly_visible(va_max, va_min, k->eps, k->kv) && v1 < v2) ||
+              (meshfix__hardly_visible(vb_max, vb_min, k->eps, k->kv) && v2 < v1)))
+            return 0;
+        if (v1 >= v2) {
+            meshfix__join(g, a, b, fa, fa ^ flip_to_cohere);
+        } else {
+            meshfix__join(g, a, b, fb ^ flip_to_cohere, fb);
+            c = v1, v1 = v2, v2 = c;
+        }
     }
-    v1 = (va_max * g->area[a] + vb_min * g->area[b]) / area; /* A to its best side, B follows */
-    v2 = (va_min * g->area[a] + vb_max * g->area[b]) / area; /* B to its best side, A follows */
-    if ((pair->length > 0 && (c < 0 ? -c : c) / pair->length > k->c0) ||
-        (meshfix__hardly_visible(va_max, va_min, k->eps, k->kv) && v1 < v2) ||
-        (meshfix__hardly_visible(vb_max, vb_min, k->eps, k->kv) && v2 < v1)) {
-        if (v1 >= v2)
-            meshfix__join(g, a, b, fa, fa ^ flip_to_cohere, v1, v2);
-        else
-            meshfix__join(g, a, b, fb ^ flip_to_cohere, fb, v2, v1);
-        return 1;
-    }
-    return 0;
+    a = a < b ? a : b;
+    g->front[a] = v1;
+    g->back[a] = v2;
+    return 1;
 }
 
-/* ===== >>nesting ===== */
+MESHFIX__PRIVATE int meshfix__alloc_merge(meshfix__geometry *g, meshfix__merge *merge, int with_visibility)
+{
+    size_t patches = g->m->patch_count;
+    unsigned int p;
+    MESHFIX_MEMSET(merge, 0, sizeof(*merge));
+    merge->parent = (unsigned int *)meshfix__allocate(&g->allocator, patches, sizeof(unsigned int));
+    merge->parity = (unsigned char *)meshfix__allocate(&g->allocator, patches, 1);
+    merge->turn = (unsigned char *)meshfix__allocate(&g->allocator, patches, 1);
+    if (with_visibility) {
+        merge->front = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
+        merge->back = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
+        merge->area = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
+        if (!merge->front || !merge->back || !merge->area)
+            return 0;
+    }
+    if (!merge->parent || !merge->parity || !merge->turn)
+        return 0;
+    for (p = 0; p < patches; ++p) {
+        merge->parent[p] = p;
+        merge->parity[p] = merge->turn[p] = 0;
+    }
+    return 1;
+}
 
-/* A closed shell is a cavity when it lies inside an odd number of other
-   surfaces and crosses none. Inside: rays from many points of the shell
-   cross the rest of the model an odd number of times; a majority (3 of 4)
-   decides, so an outer shell with gaps still encloses. Crossing: an edge
-   of the shell passes through a triangle of another patch. */
-#define MESHFIX__NESTING_SAMPLES 32
+MESHFIX__PRIVATE void meshfix__free_merge(meshfix__geometry *g, meshfix__merge *merge)
+{
+    meshfix__release(&g->allocator, merge->parent);
+    meshfix__release(&g->allocator, merge->parity);
+    meshfix__release(&g->allocator, merge->turn);
+    meshfix__release(&g->allocator, merge->front);
+    meshfix__release(&g->allocator, merge->back);
+    meshfix__release(&g->allocator, merge->area);
+}
 
-MESHFIX__PRIVATE int meshfix__shell_crosses(const meshfix__geometry *g, unsigned int p)
+/* Units from the merge: numbered by their lowest patch; each patch gets
+   its unit and its frame relative to the unit's. Without a merge, every
+   patch is its own unit. */
+MESHFIX__PRIVATE void meshfix__number_units(meshfix__geometry *g, meshfix__merge *merge)
+{
+    meshfix__mesh *m = g->m;
+    unsigned int p, count = 0, parity;
+    for (p = 0; p < m->patch_count; ++p) {
+        unsigned int root = merge != NULL ? meshfix__merge_find(merge, p, &parity) : p;
+        if (merge == NULL)
+            parity = 0;
+        g->patch_unit[p] = root == p ? count++ : g->patch_unit[root];
+        g->patch_turn[p] = (unsigned char)parity; /* the unit's frame is its root patch's */
+    }
+    g->unit_count = count;
+}
+
+/* ===== >>shells ===== */
+
+/* What each unit adds up to: its area facing each way as given, the
+   caller's normals, its volume, its box; whether it is closed. Volumes are
+   taken about one point per unit (its first vertex), so patches that only
+   together close a shell sum to its volume. */
+MESHFIX__PRIVATE void meshfix__sum_unit_triangle(meshfix__geometry *g, unsigned int t, const double origin[3],
+                                                meshfix__unit *u)
 {
     const meshfix__mesh *m = g->m;
-    unsigned int i;
-    meshfix__query q;
-    q.mode = MESHFIX__COUNT_HITS;
-    q.skip = MESHFIX__NONE;
-    q.group = m->tri_patch;
-    q.skip_group = p;
-    for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
-        unsigned int t = m->queue[i], k;
-        if (!meshfix__has_geometry(m, t))
+    double a[3], b[3], c[3], n[3], area, volume, sign = meshfix__unit_relative(g, t) ? -1.0 : 1.0;
+    float f[3];
+    int k;
+    if (!meshfix__has_geometry(m, t)) {
+        if (m->positions == NULL) /* no positions: count triangles */
+            *(sign > 0 ? &u->kept : &u->reversed) += 1.0;
+        return;
+    }
+    meshfix__load_triangle(m, t, origin, a, b, c, n);
+    area = 0.5 * MESHFIX_SQRT(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(area > 0.0))
+        return;
+    volume = (a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+              a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+    u->area += area;
+    u->volume += sign * volume;
+    *(sign > 0 ? &u->kept : &u->reversed) += area;
+    u->normals += sign * meshfix__normal_vote(m, t, n) * area;
+    u->normals_area += meshfix__normal_usable(m, t) ? area : 0.0;
+    for (k = 0; k < 3; ++k) {
+        meshfix__frame_vertex(&g->bvh, m, m->indices[3 * t + (unsigned int)k], f);
+        meshfix__grow_box(u->box, u->box + 3, f);
+    }
+}
+
+/* A unit is closed when no member has a boundary edge and, at every
+   edge of three or more triangles, its members run the edge as often one
+   way as the other (and its volume means something); gapped when the
+   edges without a partner in the unit (boundary edges, and ring edges
+   where its sides do not meet) are less than a fifth of its boundary: a
+   sphere cut into patches whose seams opened by a gap, or a terrain cut
+   into many, which its own crossings tell apart later. `net` holds a zero
+   per unit. */
+MESHFIX__PRIVATE void meshfix__close_units(meshfix__geometry *g, const meshfix__coherence *c, int *net)
+{
+    const meshfix__mesh *m = g->m;
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count), i, u;
+    for (u = 0; u < g->unit_count; ++u)
+        g->units[u].closed = MESHFIX__CLOSED;
+    for (i = 0; i < c->segment_count; ++i) {
+        const meshfix__segment *s = &c->segments[i];
+        meshfix__unit *x = &g->units[g->patch_unit[s->patch]];
+        x->closed = MESHFIX__OPEN;
+        x->boundary += s->length;
+        if (!s->matched || g->patch_unit[c->segments[s->partner].patch] != g->patch_unit[s->patch])
+            x->unmatched += s->length;
+    }
+    for (h = 0; h < half_edges; ++h) {
+        unsigned int cur = h;
+        double length;
+        if (!meshfix__is_ring_last(m, h))
             continue;
+        length = meshfix__edge_length(m, h) / g->length_unit;
+        do { /* the net direction per unit */
+            unsigned int next, t;
+            cur = m->mate[cur] & ~MESHFIX__RING;
+            t = cur / 3;
+            next = cur % 3 == 2 ? cur - 2 : cur + 1;
+            if (m->tri_patch[t] != MESHFIX__NONE)
+                net[g->patch_unit[m->tri_patch[t]]] +=
+                    ((m->indices[cur] < m->indices[next]) != (meshfix__unit_relative(g, t) != 0)) ? 1 : -1;
+        } while (cur != h);
+        do { /* read back, and zero again */
+            unsigned int t;
+            cur = m->mate[cur] & ~MESHFIX__RING;
+            t = cur / 3;
+            if (m->tri_patch[t] == MESHFIX__NONE)
+                continue;
+            u = g->patch_unit[m->tri_patch[t]];
+            if (net[u] != 0) {
+                g->units[u].closed = MESHFIX__OPEN;
+                g->units[u].unmatched += length * (double)(net[u] < 0 ? -net[u] : net[u]);
+                g->units[u].boundary += length * (double)(net[u] < 0 ? -net[u] : net[u]);
+                net[u] = 0;
+            }
+        } while (cur != h);
+    }
+    for (u = 0; u < g->unit_count; ++u) {
+        meshfix__unit *x = &g->units[u];
+        if (x->closed == MESHFIX__OPEN && x->unmatched < 0.2 * x->boundary)
+            x->closed = MESHFIX__GAPPED;
+        if (x->closed == MESHFIX__CLOSED && !meshfix__volume_is_meaningful(x->volume, x->area))
+            x->closed = MESHFIX__OPEN;
+    }
+}
+
+/* Sums every unit: an origin each (its first vertex with geometry), then
+   its triangles patch by patch. */
+MESHFIX__PRIVATE void meshfix__sum_units(meshfix__geometry *g)
+{
+    const meshfix__mesh *m = g->m;
+    unsigned int p, i, u;
+    MESHFIX_MEMSET(g->units, 0, g->unit_count * sizeof(meshfix__unit));
+    for (u = 0; u < g->unit_count; ++u)
+        meshfix__empty_box(g->units[u].box);
+    for (p = 0; p < m->patch_count; ++p) {
+        meshfix__unit *x = &g->units[g->patch_unit[p]];
+        for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
+            unsigned int t = m->queue[i];
+            if (!x->has_origin && meshfix__has_geometry(m, t)) {
+                double zero[3] = {0, 0, 0};
+                meshfix__load_corner(m, m->indices[3 * t], zero, x->origin);
+                x->has_origin = 1;
+            }
+            meshfix__sum_unit_triangle(g, t, x->origin, x);
+        }
+    }
+}
+
+/* ===== >>evidence ===== */
+
+/* How much each kind of evidence counts next to the prior (the area share
+   facing the unit's majority side as given: 1 for a consistent unit) and
+   the caller's normals (2). A volume (closed or nearly closed units),
+   crossings of a shell around an open unit, or an open unit's own crossings
+   when the scene was reversed, count 2: enough to turn a consistent unit
+   over. An open unit's own crossings otherwise, and escape visibility,
+   count 1: they decide what its own triangles leave open, but never turn
+   over a consistent open unit, because open surfaces face the way their
+   authors chose (a terrain faces up although more rays escape below it;
+   the walls of a pipe in a CFD case face the fluid inside). */
+#define MESHFIX__WEIGHT_NORMALS 2.0
+#define MESHFIX__WEIGHT_STRONG 2.0
+#define MESHFIX__WEIGHT_WEAK 1.0
+
+/* The weighing, in one place. Relative to the unit's majority side: the
+   prior P in [0, 1], normals N in [-1, 1] and a geometric mean M in
+   [-1, 1] with its standard error e give D = P + 2 N + W (M +- sigma e).
+   The unit turns when even the bound that favours keeping is below 0;
+   a tie keeps. Confidence is the bound on the side decided, up to 1. */
+MESHFIX__PRIVATE void meshfix__weigh(const meshfix__unit *u, double sigma, double *low, double *high, int *majority)
+{
+    double total = u->kept + u->reversed, p = total > 0 ? (u->kept - u->reversed) / total : 0.0;
+    double n = u->normals_area > 0 ? u->normals / u->normals_area : 0.0, d;
+    *majority = p < 0 ? -1 : 1;
+    d = (p < 0 ? -p : p) * (u->reversed_prior ? -1.0 : 1.0) + MESHFIX__WEIGHT_NORMALS * n * *majority +
+        u->weight * u->mean * *majority;
+    *low = d - u->weight * sigma * u->error;
+    *high = d + u->weight * sigma * u->error;
+}
+
+MESHFIX__PRIVATE void meshfix__verdict_from_weights(meshfix__unit *u, double sigma)
+{
+    double low, high;
+    int majority, flip;
+    meshfix__weigh(u, sigma, &low, &high, &majority);
+    flip = high < 0;
+    u->turn = (unsigned int)((majority < 0) != flip);
+    u->confidence = (float)meshfix__mind(1.0, flip ? -high : meshfix__maxd(0.0, low));
+}
+
+/* Whether more samples could change the verdict: the weighing with the
+   mean anywhere within its bounds does not decide the same way. */
+MESHFIX__PRIVATE int meshfix__unsettled(const meshfix__unit *u, double sigma)
+{
+    double low, high;
+    int majority;
+    meshfix__weigh(u, sigma, &low, &high, &majority);
+    return low < 0 && high >= 0;
+}
+
+/* Whether evidence of weight w could turn the unit at all. */
+MESHFIX__PRIVATE int meshfix__could_turn(const meshfix__unit *u, double w)
+{
+    meshfix__unit probe = *u;
+    double low, high;
+    int majority;
+    probe.weight = w;
+    probe.error = 0;
+    probe.mean = u->kept >= u->reversed ? -1.0 : 1.0; /* all of it against the majority */
+    meshfix__weigh(&probe, 0.0, &low, &high, &majority);
+    return high < 0;
+}
+
+/* Rays per unit: a batch at a time until the verdict is settled, at most
+   a share of the budget by area (at least 4 batches, at most 4096 rays). */
+#define MESHFIX__BATCH 16
+MESHFIX__PRIVATE unsigned int meshfix__ray_cap(const meshfix__geometry *g, const meshfix__unit *u, double total_area)
+{
+    const meshfix_options *o = g->o;
+    double budget = o->visibility_rays != 0 ? (double)o->visibility_rays : 1048576.0;
+    double share = total_area > 0 ? budget * u->area / total_area : 0.0;
+    share = share < 4 * MESHFIX__BATCH ? 4 * MESHFIX__BATCH : share > 4096 ? 4096 : share;
+    return (unsigned int)share;
+}
+
+/* Samples evidence of one kind for unit u until its verdict is settled or
+   the cap is reached; the unit's mean (the votes' mean times `sign`),
+   error and weight describe it. Returns the votes' mean. */
+MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned int index, meshfix__unit *u,
+                                        unsigned int kind, double weight, double sign, const unsigned int *list,
+                                        unsigned int count, unsigned int cap)
+{
+    meshfix__votes votes;
+    unsigned int i;
+    MESHFIX_MEMSET(&votes, 0, sizeof(votes));
+    u->weight = weight;
+    u->kind = (unsigned char)kind;
+    for (i = 0; i < cap; ++i) {
+        int vote = kind == MESHFIX__BY_VOLUME ? meshfix__sample_nesting(g, index, i, list, count)
+                                               : meshfix__sample_sides(g, index, kind, i, list, count);
+        meshfix__add_vote(&votes, vote);
+        if ((i + 1) % MESHFIX__BATCH != 0)
+            continue;
+        u->mean = sign * meshfix__vote_mean(&votes);
+        u->error = meshfix__vote_error(&votes);
+        if (!meshfix__unsettled(u, g->sigma))
+            break;
+    }
+    u->mean = sign * meshfix__vote_mean(&votes);
+    u->error = meshfix__vote_error(&votes);
+    return meshfix__vote_mean(&votes);
+}
+
+/* Significant: the mean's bound nearest 0 is at least a tenth away; for
+   escaping rays, a third: hills hide part of a terrain's top from the sky
+   and nothing hides its underside, yet it faces up. An enclosed side (the
+   inside of a car body in a soup) blocks most of its rays. */
+MESHFIX__PRIVATE int meshfix__significant(const meshfix__unit *u, double sigma)
+{
+    return MESHFIX_FABS(u->mean) - sigma * u->error >= (u->kind == MESHFIX__BY_ESCAPE ? 0.35 : 0.1);
+}
+
+/* An edge of unit u passes through a triangle of unit e. */
+MESHFIX__PRIVATE int meshfix__crosses(const meshfix__geometry *g, unsigned int u, unsigned int e)
+{
+    const meshfix__bvh *b = &g->bvh;
+    unsigned int i, k;
+    meshfix__query q;
+    q.mode = MESHFIX__ANY_HIT;
+    q.skip = MESHFIX__NONE;
+    for (i = b->unit_first[u]; i < b->unit_first[u + 1]; ++i) {
+        const float *c = b->corners + 9 * (size_t)i;
         for (k = 0; k < 3; ++k) {
-            float a[3], b[3], d[3];
+            const float *a = c + 3 * k, *d = c + 3 * ((k + 1) % 3);
+            float along[3];
             meshfix__ray ray;
-            meshfix__frame_vertex(&g->bvh, m, m->indices[3 * t + k], a);
-            meshfix__frame_vertex(&g->bvh, m, m->indices[3 * t + (k + 1) % 3], b);
-            d[0] = b[0] - a[0], d[1] = b[1] - a[1], d[2] = b[2] - a[2];
-            meshfix__setup_ray(&ray, a, d, 1e-4f, 1.0f - 1e-4f);
-            if (meshfix__trace(&g->bvh, &ray, &q))
+            along[0] = d[0] - a[0], along[1] = d[1] - a[1], along[2] = d[2] - a[2];
+            meshfix__setup_ray(&ray, a, along, 1e-4f, 1.0f - 1e-4f);
+            if (meshfix__trace(b, b->unit_root[e], &ray, &q))
                 return 1;
         }
     }
     return 0;
 }
 
-/* Returns 1 when the shell is a cavity; *confidence in [0, 1]. */
-MESHFIX__PRIVATE int meshfix__shell_is_cavity(const meshfix__geometry *g, unsigned int p, float *confidence)
+/* The closed and nearly closed units whose box contains unit u's: the
+   only ones that can enclose it (a cost per unit that does not grow with
+   the scene, where rays to infinity through thousands of shells did). */
+#define MESHFIX__MOST_ENCLOSERS 64
+MESHFIX__PRIVATE unsigned int meshfix__enclosers(const meshfix__geometry *g, unsigned int u, unsigned int *out)
 {
-    unsigned int i, odd = 0;
+    unsigned int n, i, kept = 0;
+    n = meshfix__boxes_around(g->shell_nodes, g->shell_root, g->shell_ids, g->units[u].box, 0, out,
+                              MESHFIX__MOST_ENCLOSERS);
+    for (i = 0; i < n; ++i)
+        if (out[i] != u && g->bvh.unit_root[out[i]] != MESHFIX__NONE)
+            out[kept++] = out[i];
+    return kept;
+}
+
+/* Whether unit u crosses a shell: the shells whose box meets u's, each
+   asked whether an edge of u passes through it. */
+MESHFIX__PRIVATE int meshfix__crosses_a_shell(const meshfix__geometry *g, unsigned int u)
+{
+    unsigned int list[MESHFIX__MOST_ENCLOSERS], n, i;
+    n = meshfix__boxes_around(g->shell_nodes, g->shell_root, g->shell_ids, g->units[u].box, 1, list,
+                              MESHFIX__MOST_ENCLOSERS);
+    for (i = 0; i < n; ++i)
+        if (list[i] != u && meshfix__crosses(g, u, list[i]))
+            return 1;
+    return 0;
+}
+
+/* A gapped unit is nearly closed when its own crossings say that one of
+   its sides is inside and the other outside: their mean vote, at least
+   0.6 away from 0 within its bounds. Its sign then tells its outside. */
+MESHFIX__PRIVATE void meshfix__gap_evidence(const meshfix__geometry *g, unsigned int index, double total_area)
+{
+    meshfix__unit *u = &g->units[index];
+    unsigned int i, cap = meshfix__ray_cap(g, u, total_area);
+    meshfix__votes votes;
+    MESHFIX_MEMSET(&votes, 0, sizeof(votes));
+    for (i = 0; i < cap; ++i) {
+        meshfix__add_vote(&votes, meshfix__sample_sides(g, index, MESHFIX__BY_PARITY, i, &index, 1));
+        if ((i + 1) % MESHFIX__BATCH != 0)
+            continue;
+        u->mean = meshfix__vote_mean(&votes);
+        u->error = meshfix__vote_error(&votes);
+        if (MESHFIX_FABS(u->mean) - g->sigma * u->error >= 0.6 || MESHFIX_FABS(u->mean) + g->sigma * u->error < 0.6)
+            break;
+    }
+    u->mean = meshfix__vote_mean(&votes);
+    u->error = meshfix__vote_error(&votes);
+    u->closed = (unsigned char)(MESHFIX_FABS(u->mean) - g->sigma * u->error >= 0.6 ? MESHFIX__NEARLY_CLOSED
+                                                                                  : MESHFIX__OPEN);
+}
+
+/* A closed or nearly closed unit faces out (positive volume, or the side
+   its own crossings found outside) unless it is a cavity: inside an odd
+   number of the shells around it, crossing no shell (shells that cross
+   each other are separate bodies: each faces out). Its evidence is that
+   side times the nesting vote. */
+MESHFIX__PRIVATE void meshfix__shell_evidence(const meshfix__geometry *g, unsigned int index, double total_area)
+{
+    meshfix__unit *u = &g->units[index];
+    unsigned int list[MESHFIX__MOST_ENCLOSERS], n = meshfix__enclosers(g, index, list);
+    double side = (u->closed == MESHFIX__CLOSED ? u->volume : u->mean) > 0 ? 1.0 : -1.0, inside;
+    u->kind = MESHFIX__BY_VOLUME;
+    u->weight = MESHFIX__WEIGHT_STRONG;
+    u->mean = side;
+    u->error = 0.0;
+    if (n == 0)
+        return;
+    /* the nesting vote (+1 inside) turns the side around */
+    inside = meshfix__measure(g, index, u, MESHFIX__BY_VOLUME, MESHFIX__WEIGHT_STRONG, -side, list, n,
+                              meshfix__ray_cap(g, u, total_area));
+    /* inside: unless it crosses a shell (asked only now: it costs a ray per edge) */
+    if (inside > 0 && meshfix__crosses_a_shell(g, index)) {
+        inside = -1.0;
+        u->mean = side;
+        u->error = 0.0;
+    }
+    u->cavity = (unsigned char)(inside - g->sigma * u->error > 0);
+}
+
+/* An open unit (AUTO): the first kind of evidence that is significant,
+   each asked only if it could still change the verdict. In a reversed
+   scene its majority counts against it, and its own crossings as much as
+   a volume. */
+MESHFIX__PRIVATE void meshfix__open_evidence(const meshfix__geometry *g, unsigned int index, double total_area)
+{
+    meshfix__unit *u = &g->units[index];
+    unsigned int list[MESHFIX__MOST_ENCLOSERS], n = meshfix__enclosers(g, index, list);
+    unsigned int cap = meshfix__ray_cap(g, u, total_area);
+    double own_weight = g->reversed_scene ? MESHFIX__WEIGHT_STRONG : MESHFIX__WEIGHT_WEAK;
+    u->reversed_prior = (unsigned char)g->reversed_scene;
+    u->kind = MESHFIX__BY_NOTHING;
+    u->mean = u->error = u->weight = 0.0;
+    if (n != 0 && meshfix__could_turn(u, MESHFIX__WEIGHT_STRONG)) {
+        meshfix__measure(g, index, u, MESHFIX__BY_PARITY, MESHFIX__WEIGHT_STRONG, 1.0, list, n, cap);
+        if (meshfix__significant(u, g->sigma))
+            return;
+    }
+    if (meshfix__could_turn(u, own_weight)) {
+        meshfix__measure(g, index, u, MESHFIX__BY_PARITY, own_weight, 1.0, &index, 1, cap);
+        if (meshfix__significant(u, g->sigma))
+            return;
+    }
+    if (g->bvh.top != MESHFIX__NONE && meshfix__could_turn(u, MESHFIX__WEIGHT_WEAK)) {
+        meshfix__measure(g, index, u, MESHFIX__BY_ESCAPE, MESHFIX__WEIGHT_WEAK, 1.0, NULL, 0, cap);
+        if (meshfix__significant(u, g->sigma))
+            return;
+    }
+    u->kind = MESHFIX__BY_NOTHING;
+    u->mean = u->error = u->weight = 0.0;
+}
+
+/* The units' evidence in chunks, on the caller's threads if it gave a
+   parallel_for: each unit is measured alone, so the order does not
+   matter. */
+/* The phases of gathering, in order: gapped units to nearly closed or
+   open; then shells (nesting); then open units. */
+#define MESHFIX__PHASE_GAPS 0
+#define MESHFIX__PHASE_SHELLS 1
+#define MESHFIX__PHASE_OPEN 2
+
+typedef struct meshfix__evidence_task {
+    meshfix__geometry *g;
+    double total_area;
+    int phase;
+} meshfix__evidence_task;
+
+#define MESHFIX__UNITS_PER_TASK 64
+MESHFIX__PRIVATE void meshfix__evidence_chunk(void *context, size_t chunk)
+{
+    const meshfix__evidence_task *task = (const meshfix__evidence_task *)context;
+    meshfix__geometry *g = task->g;
+    size_t u, end = (chunk + 1) * MESHFIX__UNITS_PER_TASK;
+    for (u = chunk * MESHFIX__UNITS_PER_TASK; u < end && u < g->unit_count; ++u) {
+        int closed = g->units[u].closed;
+        if (g->bvh.unit_first[u] == g->bvh.unit_first[u + 1])
+            continue;
+        if (task->phase == MESHFIX__PHASE_GAPS && closed == MESHFIX__GAPPED)
+            meshfix__gap_evidence(g, (unsigned int)u, task->total_area);
+        else if (task->phase == MESHFIX__PHASE_SHELLS && closed >= MESHFIX__NEARLY_CLOSED)
+            meshfix__shell_evidence(g, (unsigned int)u, task->total_area);
+        else if (task->phase == MESHFIX__PHASE_OPEN && closed == MESHFIX__OPEN)
+            meshfix__open_evidence(g, (unsigned int)u, task->total_area);
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__gather_evidence(meshfix__geometry *g, int phase, double total_area)
+{
+    meshfix__evidence_task task;
+    size_t chunks = (g->unit_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK, c;
+    task.g = g;
+    task.total_area = total_area;
+    task.phase = phase;
+    if (g->o->parallel_for != NULL)
+        g->o->parallel_for(meshfix__evidence_chunk, &task, chunks, g->o->parallel_user);
+    else
+        for (c = 0; c < chunks; ++c)
+            meshfix__evidence_chunk(&task, c);
+}
+
+/* The trees every measurement may walk, built before the measuring runs
+   on several threads: each unit's (a unit's tree writes only its own
+   slots and nodes, so they could be built in parallel too). */
+MESHFIX__PRIVATE void meshfix__build_unit_trees(meshfix__geometry *g)
+{
+    unsigned int u;
+    for (u = 0; u < g->unit_count; ++u)
+        meshfix__unit_tree(&g->bvh, g->m, u);
+}
+
+/* The tree over the boxes of the closed and nearly closed units. */
+MESHFIX__PRIVATE void meshfix__index_shells(meshfix__geometry *g)
+{
+    meshfix__builder k;
+    unsigned int u, n = 0;
+    int c;
+    g->shell_root = MESHFIX__NONE;
+    for (u = 0; u < g->unit_count; ++u) {
+        float *slot = g->unit_slots + 9 * (size_t)n;
+        if (g->units[u].closed < MESHFIX__NEARLY_CLOSED || g->bvh.unit_root[u] == MESHFIX__NONE)
+            continue;
+        MESHFIX_MEMCPY(slot, g->units[u].box, 6 * sizeof(float));
+        for (c = 0; c < 3; ++c)
+            slot[MESHFIX__SLOT_CENTROID + c] = 0.5f * (slot[c] + slot[3 + c]);
+        g->shell_ids[n++] = u;
+    }
+    if (n == 0)
+        return;
+    k.slots = g->unit_slots;
+    k.ids = g->shell_ids;
+    k.nodes = g->shell_nodes;
+    k.next_node = 0;
+    k.leaf = 1;
+    g->shell_root = meshfix__build_tree(&k, 0, n);
+}
+
+/* The scene was reversed when its closed parts were: at least two units
+   with a volume decided, and at least 90% of their area turned over. Then
+   the open parts are most likely reversed too: they turn over unless
+   their own evidence says otherwise. */
+MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g)
+{
+    double turned = 0, all = 0;
+    unsigned int u, count = 0;
+    for (u = 0; u < g->unit_count; ++u) {
+        const meshfix__unit *x = &g->units[u];
+        int majority;
+        double low, high;
+        if (x->kind != MESHFIX__BY_VOLUME || !meshfix__significant(x, g->sigma))
+            continue;
+        meshfix__weigh(x, g->sigma, &low, &high, &majority);
+        count++;
+        all += x->area;
+        turned += high < 0 ? x->area : 0.0;
+    }
+    return count >= 2 && turned >= 0.9 * all;
+}
+
+/* VISIBILITY: one sample pair of patch p; counts the side(s) that escape. */
+MESHFIX__PRIVATE int meshfix__sample_escape(const meshfix__geometry *g, unsigned int p, unsigned int index,
+                                           unsigned int *front, unsigned int *back)
+{
+    unsigned int state = meshfix__stream(g, p, MESHFIX__BY_ESCAPE, index), t, side;
+    float point[3], d[3], reverse[3];
+    double n[3];
+    int blocked[2], facing;
+    meshfix__ray ray;
     meshfix__query q;
-    if (meshfix__shell_crosses(g, p)) {
-        *confidence = 1.0f;
-        return 0;
+    t = meshfix__sample_point(g, p, &state, point, n);
+    meshfix__random_direction(&state, d);
+    reverse[0] = -d[0], reverse[1] = -d[1], reverse[2] = -d[2];
+    q.mode = MESHFIX__ANY_HIT;
+    q.skip = t;
+    for (side = 0; side < 2; ++side) {
+        meshfix__setup_ray(&ray, point, side ? reverse : d, g->t_min, 1e30f);
+        blocked[side] = meshfix__trace(&g->bvh, g->bvh.top, &ray, &q);
     }
-    q.mode = MESHFIX__COUNT_HITS;
-    q.skip = MESHFIX__NONE;
-    q.group = g->m->tri_patch;
-    q.skip_group = p;
-    for (i = 0; i < MESHFIX__NESTING_SAMPLES; ++i) {
-        unsigned int state = meshfix__mix(g->seed ^ 0xC0FFEEu ^ meshfix__mix(p * 0x9E3779B1u ^ meshfix__mix(i)));
-        float point[3], d[3];
-        meshfix__ray ray;
-        meshfix__sample_point(g, p, &state, point);
-        meshfix__random_direction(&state, d);
-        meshfix__setup_ray(&ray, point, d, g->t_min, 1e30f);
-        meshfix__trace(&g->bvh, &ray, &q);
-        odd += q.hits & 1u;
+    facing = n[0] * (double)d[0] + n[1] * (double)d[1] + n[2] * (double)d[2] >= 0 ? 0 : 1; /* the front's ray */
+    *front += (unsigned int)!blocked[facing];
+    *back += (unsigned int)!blocked[1 - facing];
+    return meshfix__side_vote(blocked[facing], blocked[1 - facing]);
+}
+/* ===== >>decide ===== */
+
+/* One verdict per policy. Every policy weighs a unit (a patch, or for
+   AUTO, OUTWARD and VISIBILITY a super-patch) from what it knows: its
+   area facing each way as given (the prior), and the evidence the policy
+   looks at. Policies that follow one kind of evidence alone (VISIBILITY,
+   UP, NORMALS, SDF) take its side when it is significant and the
+   majority otherwise; AUTO and OUTWARD weigh it against the prior. */
+
+/* The side `mean` points to when |mean| - sigma * error exceeds `least`;
+   otherwise the majority side, kept for lack of evidence. */
+MESHFIX__PRIVATE void meshfix__verdict_follow(meshfix__unit *u, double sigma, double least)
+{
+    double margin = MESHFIX_FABS(u->mean) - sigma * u->error;
+    if (margin > least) {
+        u->turn = u->mean < 0;
+        u->confidence = (float)meshfix__mind(1.0, margin);
+        return;
     }
-    *confidence = (float)(odd * 2 > MESHFIX__NESTING_SAMPLES ? 2 * odd - MESHFIX__NESTING_SAMPLES
-                                                              : MESHFIX__NESTING_SAMPLES - 2 * odd) /
-                  (float)MESHFIX__NESTING_SAMPLES;
-    return 4 * odd >= 3 * MESHFIX__NESTING_SAMPLES;
+    u->weight = 0;
+    u->kind = MESHFIX__BY_NOTHING;
+    meshfix__verdict_from_weights(u, sigma);
+}
+
+/* A patch's unit from its sums, for the policies that decide patch by
+   patch (its frame is its seed's). */
+MESHFIX__PRIVATE void meshfix__patch_unit(const meshfix__patch_sums *s, meshfix__unit *u)
+{
+    MESHFIX_MEMSET(u, 0, sizeof(*u));
+    u->kept = s->weight_kept;
+    u->reversed = s->weight_reversed;
+    u->normals = s->normals;
+    u->normals_area = s->normals_area;
+    u->area = s->area;
+    u->volume = s->volume_relative;
+}
+
+/* SEED: the seed triangle's way. MAJORITY: the prior alone. SDF: the
+   gradient's vote over the patch. UP: the lean of its area-weighted normal
+   along the axis (none for a closed shell: zero up to rounding). NORMALS:
+   the caller's normals. The rest were decided per unit before. */
+MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, int policy, const meshfix__patch_sums *s,
+                                           double sigma, meshfix__unit *u)
+{
+    const meshfix_options *o = m->options;
+    meshfix__patch_unit(s, u);
+    u->kind = MESHFIX__BY_POLICY;
+    if (policy == MESHFIX_POLICY_SEED) {
+        u->turn = 0;
+        u->confidence = 1.0f;
+    } else if (policy == MESHFIX_POLICY_SDF) {
+        u->mean = s->area > 0 ? s->sdf_vote / s->area : 0.0;
+        meshfix__verdict_follow(u, sigma, 0.0);
+    } else if (policy == MESHFIX_POLICY_UP) {
+        double up[3] = {0, 0, 1}, length;
+        if (o->up[0] != 0 || o->up[1] != 0 || o->up[2] != 0)
+            up[0] = (double)o->up[0], up[1] = (double)o->up[1], up[2] = (double)o->up[2];
+        length = MESHFIX_SQRT(meshfix__dot3(up, up));
+        u->mean = s->area > 0 ? meshfix__dot3(s->normal, up) / length / s->area : 0.0;
+        meshfix__verdict_follow(u, sigma, 1e-6);
+    } else if (policy == MESHFIX_POLICY_NORMALS) {
+        u->mean = s->normals_area > 0 ? s->normals / s->normals_area : 0.0;
+        u->kind = MESHFIX__BY_NORMALS;
+        meshfix__verdict_follow(u, sigma, 0.05);
+    } else {
+        /* MAJORITY; AUTO and OUTWARD on one closed shell alone: its volume */
+        u->kind = MESHFIX__BY_NOTHING;
+        if (policy != MESHFIX_POLICY_MAJORITY && meshfix__is_closed_orientable(m, 0) &&
+            meshfix__volume_is_meaningful(s->volume_relative, s->area)) {
+            u->kind = MESHFIX__BY_VOLUME;
+            u->weight = MESHFIX__WEIGHT_STRONG;
+            u->mean = s->volume_relative > 0 ? 1.0 : -1.0;
+        }
+        meshfix__verdict_from_weights(u, sigma);
+    }
+}
+
+/* AUTO and OUTWARD weigh each unit's evidence against its prior. */
+MESHFIX__PRIVATE void meshfix__decide_unit(meshfix__unit *u, double sigma)
+{
+    meshfix__verdict_from_weights(u, sigma);
+    if (!meshfix__significant(u, sigma)) {
+        u->kind = u->normals_area > 0 && MESHFIX_FABS(u->normals / u->normals_area) >= 0.1 ? MESHFIX__BY_NORMALS
+                                                                                             : MESHFIX__BY_NOTHING;
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__decide(meshfix__mesh *m, unsigned int p, unsigned int turn, float confidence,
+                                     unsigned char kind)
+{
+    m->patch_bits[p] = (unsigned char)(m->patch_bits[p] | MESHFIX__PATCH_DECIDED | (turn ? MESHFIX__PATCH_FLIP : 0u));
+    m->confidence[p] = confidence;
+    m->patch_kind[p] = kind;
+}
+
+/* Each patch takes its unit's verdict, through its frame in the unit. */
+MESHFIX__PRIVATE void meshfix__apply_units(meshfix__geometry *g)
+{
+    meshfix__mesh *m = g->m;
+    unsigned int p;
+    for (p = 0; p < m->patch_count; ++p) {
+        const meshfix__unit *u = &g->units[g->patch_unit[p]];
+        meshfix__decide(m, p, g->patch_turn[p] ^ u->turn, u->confidence, u->kind);
+    }
 }
 
 /* ===== >>geometry ===== */
@@ -2936,236 +4124,294 @@ MESHFIX__PRIVATE int meshfix__shell_is_cavity(const meshfix__geometry *g, unsign
 MESHFIX__PRIVATE void meshfix__free_geometry(meshfix__geometry *g)
 {
     meshfix__free_bvh(&g->bvh, &g->allocator);
-    meshfix__release(&g->allocator, g->patch_area);
-    meshfix__release(&g->allocator, g->cumulative_area);
-    meshfix__release(&g->allocator, g->sample_start);
-    meshfix__release(&g->allocator, g->sample_result);
+    meshfix__release(&g->allocator, g->patch_unit);
+    meshfix__release(&g->allocator, g->patch_turn);
+    meshfix__release(&g->allocator, g->triangle_unit);
+    meshfix__release(&g->allocator, g->units);
+    meshfix__release(&g->allocator, g->unit_slots);
+    meshfix__release(&g->allocator, g->unit_ids);
+    meshfix__release(&g->allocator, g->shell_nodes);
+    meshfix__release(&g->allocator, g->shell_ids);
 }
 
-MESHFIX__PRIVATE void meshfix__decide(meshfix__mesh *m, unsigned int p, unsigned int turn, float confidence)
-{
-    m->patch_bits[p] = (unsigned char)(m->patch_bits[p] | MESHFIX__PATCH_DECIDED | (turn ? MESHFIX__PATCH_FLIP : 0u));
-    if (m->confidence != NULL)
-        m->confidence[p] = confidence;
-}
-
-/* UP: each patch faces the side its area-weighted normal leans to. */
-MESHFIX__PRIVATE void meshfix__decide_up(meshfix__mesh *m, const meshfix_options *o)
-{
-    double up[3] = {0, 0, 1}, length;
-    unsigned int p;
-    if (o->up[0] != 0 || o->up[1] != 0 || o->up[2] != 0)
-        up[0] = (double)o->up[0], up[1] = (double)o->up[1], up[2] = (double)o->up[2];
-    length = MESHFIX_SQRT(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
-    for (p = 0; p < m->patch_count; ++p) {
-        meshfix__patch_sums s;
-        double lean;
-        meshfix__sum_patch(m, p, &s);
-        lean = (s.normal[0] * up[0] + s.normal[1] * up[1] + s.normal[2] * up[2]) / length;
-        /* a closed shell leans nowhere: its sum is zero up to rounding,
-           which must not decide (the majority does) */
-        if ((lean < 0 ? -lean : lean) > 1e-6 * s.area)
-            meshfix__decide(m, p, lean < 0, (float)((lean < 0 ? -lean : lean) / s.area));
-    }
-}
-
-/* Closed shells: outward, or inward when they are cavities. */
-MESHFIX__PRIVATE void meshfix__decide_shells(meshfix__geometry *g, meshfix_report *r)
+/* Units known: the trees' slots, per unit, and the scratch for trees over
+   units. Returns 0 when out of memory. */
+MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
 {
     meshfix__mesh *m = g->m;
-    unsigned int p;
-    for (p = 0; p < m->patch_count; ++p) {
-        meshfix__patch_sums s;
-        float confidence;
-        int cavity;
-        if (!meshfix__is_closed_orientable(m, p))
-            continue;
-        meshfix__sum_patch(m, p, &s);
-        if (!meshfix__volume_is_meaningful(s.volume_relative, s.area))
-            continue;
-        cavity = meshfix__shell_is_cavity(g, p, &confidence);
-        r->shells_inward += (size_t)cavity;
-        meshfix__decide(m, p, (unsigned int)((s.volume_relative < 0) != cavity), confidence);
+    unsigned int t;
+    size_t units = g->unit_count;
+    for (t = 0; t < m->triangle_count; ++t)
+        g->triangle_unit[t] = meshfix__has_area(m, t) ? g->patch_unit[m->tri_patch[t]] : MESHFIX__NONE;
+    g->units = (meshfix__unit *)meshfix__allocate(&g->allocator, units, sizeof(meshfix__unit));
+    g->unit_slots = (float *)meshfix__allocate(&g->allocator, 9 * units, sizeof(float));
+    g->unit_ids = (unsigned int *)meshfix__allocate(&g->allocator, units, sizeof(unsigned int));
+    g->shell_nodes = (meshfix__bvh_node *)meshfix__allocate(&g->allocator, 2 * units, sizeof(meshfix__bvh_node));
+    g->shell_ids = (unsigned int *)meshfix__allocate(&g->allocator, units, sizeof(unsigned int));
+    if (!g->units || !g->unit_slots || !g->unit_ids || !g->shell_nodes || !g->shell_ids)
+        return 0;
+    if (!meshfix__prepare_bvh(&g->bvh, m, &g->allocator, g->triangle_unit, g->unit_count))
+        return 0;
+    meshfix__cumulate_areas(g);
+    return 1;
+}
+
+MESHFIX__PRIVATE double meshfix__total_area(const meshfix__geometry *g)
+{
+    double total = 0;
+    unsigned int u;
+    for (u = 0; u < g->unit_count; ++u)
+        total += g->units[u].area;
+    return total;
+}
+
+/* AUTO and OUTWARD: units by coherence; closed and nearly closed ones by
+   volume and nesting; open ones (AUTO) by the first significant of the
+   shells around them, their own crossings, escaping rays. */
+MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_report *r)
+{
+    meshfix__mesh *m = g->m;
+    meshfix__coherence coherence;
+    meshfix__merge merge;
+    double total_area;
+    int *net = NULL, ok = 0;
+    unsigned int u;
+    MESHFIX_MEMSET(&merge, 0, sizeof(merge));
+    if (!meshfix__measure_coherence(g, &coherence) || !meshfix__alloc_merge(g, &merge, 0))
+        goto done;
+    r->patch_pairs += coherence.pair_count;
+    r->patches_merged += meshfix__merge_by_coherence(&merge, coherence.pairs, coherence.pair_count);
+    meshfix__number_units(g, &merge);
+    if (!meshfix__prepare_units(g))
+        goto done;
+    net = (int *)meshfix__allocate(&g->allocator, g->unit_count, sizeof(int));
+    if (net == NULL)
+        goto done;
+    MESHFIX_MEMSET(net, 0, g->unit_count * sizeof(int));
+    meshfix__sum_units(g);
+    meshfix__close_units(g, &coherence, net);
+    total_area = meshfix__total_area(g);
+    meshfix__build_unit_trees(g);
+    meshfix__gather_evidence(g, MESHFIX__PHASE_GAPS, total_area);
+    meshfix__index_shells(g);
+    meshfix__gather_evidence(g, MESHFIX__PHASE_SHELLS, total_area);
+    g->reversed_scene = m->policy == MESHFIX_POLICY_AUTO && meshfix__scene_reversed(g);
+    if (m->policy == MESHFIX_POLICY_AUTO) {
+        for (u = 0; u < g->unit_count; ++u)
+            if (g->units[u].closed == MESHFIX__OPEN && meshfix__could_turn(&g->units[u], MESHFIX__WEIGHT_WEAK))
+                break;
+        if (u < g->unit_count)
+            meshfix__top_tree(&g->bvh, m, g->unit_slots, g->unit_ids);
+        meshfix__gather_evidence(g, MESHFIX__PHASE_OPEN, total_area);
+    }
+    for (u = 0; u < g->unit_count; ++u) {
+        const meshfix__unit *x = &g->units[u];
+        meshfix__decide_unit(&g->units[u], g->sigma);
+        r->shells_inward += x->cavity;
+        MESHFIX_TRACE(("meshfix: unit %u: area %g, as given %g / %g, volume %g, closed %d, unmatched %g; "
+                       "evidence %d: %.3f +- %.3f x %g; turn %u, confidence %.2f%s\n",
+                       u, x->area, x->kept, x->reversed, x->volume, (int)x->closed, x->unmatched, (int)x->kind, x->mean,
+                       x->error, x->weight, x->turn, (double)x->confidence, x->cavity ? ", cavity" : ""));
+    }
+    meshfix__apply_units(g);
+    for (u = 0; u < coherence.pair_count; ++u) {
+        unsigned int a = meshfix__merge_turn(&merge, coherence.pairs[u].a), b = meshfix__merge_turn(&merge, coherence.pairs[u].b);
+        r->pairs_conflicting += (size_t)(coherence.pairs[u].c * ((a ^ b) ? -1.0 : 1.0) < 0);
+    }
+    ok = 1;
+done:
+    meshfix__release(&g->allocator, net);
+    meshfix__free_coherence(g, &coherence);
+    meshfix__free_merge(g, &merge);
+    return ok;
+}
+
+/* VISIBILITY per patch: front and back escape shares of sample pairs,
+   with the budget shared by area and a floor per patch. */
+MESHFIX__PRIVATE unsigned int meshfix__visibility_samples(const meshfix__geometry *g, unsigned int p, double total_area)
+{
+    const meshfix_options *o = g->o;
+    size_t patches = g->m->patch_count, budget, floor_count;
+    double area = g->units[p].area;
+    budget = o->visibility_rays != 0 ? o->visibility_rays : patches * 128;
+    if (o->visibility_rays == 0)
+        budget = budget < 65536 ? 65536 : budget > 1048576 ? 1048576 : budget;
+    budget /= 2; /* a sample is a pair of rays */
+    floor_count = o->visibility_min_samples != 0 ? o->visibility_min_samples : 16;
+    if (floor_count > budget / patches)
+        floor_count = budget / patches;
+    if (!(area > 0) || g->bvh.unit_first[p] == g->bvh.unit_first[p + 1])
+        return 0;
+    return (unsigned int)(floor_count + (size_t)((double)(budget - floor_count * patches) * (area / total_area)));
+}
+
+typedef struct meshfix__visibility_task {
+    meshfix__geometry *g;
+    meshfix__merge *merge;
+    double total_area;
+    unsigned int *samples; /* per patch */
+} meshfix__visibility_task;
+
+MESHFIX__PRIVATE void meshfix__visibility_chunk(void *context, size_t chunk)
+{
+    const meshfix__visibility_task *task = (const meshfix__visibility_task *)context;
+    meshfix__geometry *g = task->g;
+    size_t p, end = (chunk + 1) * MESHFIX__UNITS_PER_TASK;
+    for (p = chunk * MESHFIX__UNITS_PER_TASK; p < end && p < g->m->patch_count; ++p) {
+        unsigned int i, n = meshfix__visibility_samples(g, (unsigned int)p, task->total_area), front = 0, back = 0;
+        meshfix__votes votes;
+        MESHFIX_MEMSET(&votes, 0, sizeof(votes));
+        for (i = 0; i < n; ++i) {
+            int vote = meshfix__sample_escape(g, (unsigned int)p, i, &front, &back);
+            meshfix__add_vote(&votes, vote);
+        }
+        task->merge->front[p] = n ? (double)front / n : 0.0;
+        task->merge->back[p] = n ? (double)back / n : 0.0;
+        task->merge->area[p] = g->units[p].area;
+        task->samples[p] = 2 * n;
+        g->units[p].mean = meshfix__vote_mean(&votes);
+        g->units[p].error = meshfix__vote_error(&votes);
     }
 }
 
-MESHFIX__PRIVATE int meshfix__decide_visibility(meshfix__geometry *g, meshfix_report *r)
+/* The super-patches' verdicts: each root gathers, in the frame the merge
+   turned it to, its members' area facing each way as given and its
+   visibility (the merge's shares, with the members' sample count for the
+   error); the members take its turn. */
+MESHFIX__PRIVATE void meshfix__visibility_verdicts(meshfix__geometry *g, meshfix__merge *merge, unsigned int *samples)
+{
+    meshfix__mesh *m = g->m;
+    unsigned int p, parity, root;
+    /* a root is its super-patch's lowest patch: members come after it */
+    for (p = 0; p < m->patch_count; ++p) {
+        root = meshfix__merge_find(merge, p, &parity);
+        if (root != p) {
+            meshfix__unit *x = &g->units[p], *r = &g->units[root];
+            r->kept += parity ? x->reversed : x->kept;
+            r->reversed += parity ? x->kept : x->reversed;
+            samples[root] += samples[p];
+        }
+    }
+    for (p = 0; p < m->patch_count; ++p) {
+        meshfix__unit *r = &g->units[p];
+        double n = (double)samples[p] / 2, m_f, m_b, s2;
+        if (meshfix__merge_find(merge, p, &parity) != p)
+            continue;
+        if (merge->turn[p]) {
+            double x = r->kept;
+            r->kept = r->reversed, r->reversed = x;
+        }
+        m_f = merge->front[p], m_b = merge->back[p];
+        r->normals = r->normals_area = 0;
+        r->mean = m_f - m_b;
+        s2 = meshfix__maxd(m_f + m_b - r->mean * r->mean, n > 0 ? 1.0 / n : 1.0);
+        r->error = n > 0 ? MESHFIX_SQRT(s2 / n) : 1.0;
+        r->kind = MESHFIX__BY_ESCAPE;
+        meshfix__verdict_follow(r, g->sigma, 0.0);
+        merge->turn[p] ^= (unsigned char)r->turn;
+    }
+    for (p = 0; p < m->patch_count; ++p) {
+        const meshfix__unit *r;
+        root = meshfix__merge_find(merge, p, &parity);
+        r = &g->units[root];
+        meshfix__decide(m, p, parity ^ merge->turn[root], r->confidence, r->kind);
+    }
+}
+
+/* VISIBILITY (Borodin et al.): patches merged by coherence and
+   visibility; each super-patch to its more visible side when the
+   difference is significant, else to its majority. */
+MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix_report *r)
 {
     meshfix__mesh *m = g->m;
     const meshfix_options *o = g->o;
-    size_t pair_count = 0, i, patches = m->patch_count;
-    meshfix__pair *pairs = NULL;
+    meshfix__coherence coherence;
     meshfix__merge merge;
     meshfix__merge_params k;
-    double total_area = 0;
-    unsigned int p, *open = NULL;
+    meshfix__visibility_task task;
+    unsigned int p, *samples = NULL;
+    size_t i, chunks, c;
     int ok = 0;
+    MESHFIX_MEMSET(&merge, 0, sizeof(merge));
+    MESHFIX_MEMSET(&coherence, 0, sizeof(coherence));
     k.c0 = o->visibility_c0 > 0 ? (double)o->visibility_c0 : 0.5;
     k.eps = o->visibility_eps > 0 ? (double)o->visibility_eps : 0.02;
     k.kv = o->visibility_kv > 0 ? (double)o->visibility_kv : 1.5;
     k.use_visibility = !(o->visibility_flags & MESHFIX_VISIBILITY_COHERENCE_ONLY);
-    k.use_coherence = !(o->visibility_flags & MESHFIX_VISIBILITY_ONLY);
-    MESHFIX_MEMSET(&merge, 0, sizeof(merge));
-    merge.parent = (unsigned int *)meshfix__allocate(&g->allocator, patches, sizeof(unsigned int));
-    merge.parity = (unsigned char *)meshfix__allocate(&g->allocator, patches, 1);
-    merge.turn = (unsigned char *)meshfix__allocate(&g->allocator, patches, 1);
-    merge.front = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
-    merge.back = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
-    merge.area = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
-    open = (unsigned int *)meshfix__allocate(&g->allocator, patches, sizeof(unsigned int));
-    if (!merge.parent || !merge.parity || !merge.turn || !merge.front || !merge.back || !merge.area || !open)
+    meshfix__number_units(g, NULL);
+    if (!meshfix__prepare_units(g) || !meshfix__alloc_merge(g, &merge, 1))
         goto done;
-    /* the patches still to decide; the decided ones take no samples */
-    for (p = 0; p < patches; ++p) {
-        open[p] = !(m->patch_bits[p] & MESHFIX__PATCH_DECIDED);
-        merge.parent[p] = p;
-        merge.parity[p] = merge.turn[p] = 0;
-        merge.area[p] = g->patch_area[p];
-        total_area += open[p] ? g->patch_area[p] : 0.0;
+    samples = (unsigned int *)meshfix__allocate(&g->allocator, m->patch_count, sizeof(unsigned int));
+    if (samples == NULL)
+        goto done;
+    MESHFIX_MEMSET(samples, 0, m->patch_count * sizeof(unsigned int));
+    meshfix__sum_units(g);
+    for (p = 0; p < m->patch_count; ++p) {
+        merge.front[p] = merge.back[p] = 0.0;
+        merge.area[p] = g->units[p].area;
     }
     if (k.use_visibility) {
-        double *saved = g->patch_area, *weights;
-        weights = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
-        if (weights == NULL)
+        meshfix__top_tree(&g->bvh, m, g->unit_slots, g->unit_ids);
+        task.g = g;
+        task.merge = &merge;
+        task.total_area = meshfix__total_area(g);
+        task.samples = samples;
+        chunks = (m->patch_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK;
+        if (o->parallel_for != NULL)
+            o->parallel_for(meshfix__visibility_chunk, &task, chunks, o->parallel_user);
+        else
+            for (c = 0; c < chunks; ++c)
+                meshfix__visibility_chunk(&task, c);
+    }
+    for (p = 0; p < m->patch_count; ++p)
+        r->rays_cast += samples[p];
+    if (!(o->visibility_flags & MESHFIX_VISIBILITY_ONLY)) {
+        if (!meshfix__measure_coherence(g, &coherence))
             goto done;
-        for (p = 0; p < patches; ++p)
-            weights[p] = open[p] ? g->patch_area[p] : 0.0;
-        g->patch_area = weights;
-        meshfix__plan_samples(g, total_area);
-        g->patch_area = saved;
-        meshfix__release(&g->allocator, weights);
-        if (!meshfix__measure_visibility(g, merge.front, merge.back))
-            goto done;
-        r->rays_cast += g->sample_count;
-    } else {
-        for (p = 0; p < patches; ++p)
-            merge.front[p] = merge.back[p] = 0;
+        r->patch_pairs += coherence.pair_count;
+        for (i = 0; i < coherence.pair_count; ++i)
+            r->patches_merged += (size_t)meshfix__merge_borodin(&merge, &coherence.pairs[i], &k);
     }
-    if (k.use_coherence) {
-        size_t kept = 0;
-        pairs = meshfix__measure_coherence(g, &pair_count);
-        if (pairs == NULL)
-            goto done;
-        for (i = 0; i < pair_count; ++i)
-            if (open[pairs[i].a] && open[pairs[i].b])
-                pairs[kept++] = pairs[i];
-        pair_count = kept;
-        r->patch_pairs += pair_count;
-        for (i = 0; i < pair_count; ++i)
-            r->patches_merged += (size_t)meshfix__merge_pair(&merge, &pairs[i], &k);
-    }
-    /* every super-patch to its more visible side; without a visibility
-       margin (or without visibility at all), to its majority side */
-    for (p = 0; p < patches; ++p) {
-        unsigned int parity;
-        if (open[p] && meshfix__merge_find(&merge, p, &parity) == p) {
-            if (merge.front[p] < merge.back[p])
-                merge.turn[p] ^= 1;
-            else if (merge.front[p] == merge.back[p])
-                open[p] = 2; /* decided below by the members' majority */
-        }
-    }
-    {
-        /* majority of tied super-patches: area given as is, per root frame */
-        double *kept_area = merge.front, *reversed_area = merge.back;
-        for (p = 0; p < patches; ++p)
-            if (open[p] == 2)
-                kept_area[p] = reversed_area[p] = 0;
-        for (p = 0; p < patches; ++p) {
-            unsigned int parity, root;
-            meshfix__patch_sums s;
-            if (!open[p])
-                continue;
-            root = meshfix__merge_find(&merge, p, &parity);
-            if (open[root] != 2)
-                continue;
-            meshfix__sum_patch(m, p, &s);
-            /* as the super-patch is turned now, what would keep its winding */
-            parity ^= merge.turn[root];
-            kept_area[root] += parity ? s.weight_reversed : s.weight_kept;
-            reversed_area[root] += parity ? s.weight_kept : s.weight_reversed;
-        }
-        for (p = 0; p < patches; ++p)
-            if (open[p] == 2 && kept_area[p] < reversed_area[p])
-                merge.turn[p] ^= 1;
-    }
-    for (p = 0; p < patches; ++p) {
-        unsigned int parity, root;
-        double margin;
-        if (!open[p])
-            continue;
-        root = meshfix__merge_find(&merge, p, &parity);
-        margin = open[root] == 2 || !k.use_visibility ? 0.0
-                 : (meshfix__maxd(merge.front[root], merge.back[root]) - meshfix__mind(merge.front[root], merge.back[root])) /
-                       (merge.front[root] + merge.back[root]);
-        meshfix__decide(m, p, parity ^ merge.turn[root], (float)margin);
-    }
-    for (i = 0; i < pair_count; ++i) {
-        unsigned int ta = meshfix__merge_turn(&merge, pairs[i].a), tb = meshfix__merge_turn(&merge, pairs[i].b);
-        r->pairs_conflicting += (size_t)(pairs[i].c * ((ta ^ tb) ? -1.0 : 1.0) < 0);
+    meshfix__visibility_verdicts(g, &merge, samples);
+    for (i = 0; i < coherence.pair_count; ++i) {
+        unsigned int a = meshfix__merge_turn(&merge, coherence.pairs[i].a), b = meshfix__merge_turn(&merge, coherence.pairs[i].b);
+        r->pairs_conflicting += (size_t)(coherence.pairs[i].c * ((a ^ b) ? -1.0 : 1.0) < 0);
     }
     ok = 1;
 done:
-    meshfix__release(&g->allocator, pairs);
-    meshfix__release(&g->allocator, merge.parent);
-    meshfix__release(&g->allocator, merge.parity);
-    meshfix__release(&g->allocator, merge.turn);
-    meshfix__release(&g->allocator, merge.front);
-    meshfix__release(&g->allocator, merge.back);
-    meshfix__release(&g->allocator, merge.area);
-    meshfix__release(&g->allocator, open);
+    meshfix__release(&g->allocator, samples);
+    meshfix__free_coherence(g, &coherence);
+    meshfix__free_merge(g, &merge);
     return ok;
 }
 
-/* Decides the patches that need ray queries or an axis: the nesting of
-   closed shells (OUTWARD, AUTO), visibility and coherence (VISIBILITY; AUTO
-   for the rest), the up axis (UP). Returns 0 when out of memory. */
+/* Decides the patches of the policies that need rays (OUTWARD, AUTO,
+   VISIBILITY); the others decide patch by patch when they are oriented.
+   Returns 0 when out of memory. */
 MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, const meshfix_allocator *allocator,
                                                 meshfix_report *r)
 {
     meshfix__geometry g;
-    int policy = m->policy, ok = 1;
-    unsigned int p, i;
-    if (policy == MESHFIX_POLICY_UP) {
-        meshfix__decide_up(m, m->options);
-        return 1;
-    }
-    if (policy != MESHFIX_POLICY_OUTWARD && policy != MESHFIX_POLICY_AUTO && policy != MESHFIX_POLICY_VISIBILITY)
-        return 1;
-    /* one closed shell alone: nothing to nest in, its volume decides */
-    if (policy != MESHFIX_POLICY_VISIBILITY && m->patch_count == 1 && meshfix__is_closed_orientable(m, 0))
-        return 1;
+    int policy = m->policy, ok;
     MESHFIX_MEMSET(&g, 0, sizeof(g));
     g.m = m;
     g.o = m->options;
     g.allocator = *allocator;
     g.seed = m->options->seed != 0 ? m->options->seed : 0x5EEDu;
-    g.patch_area = (double *)meshfix__allocate(allocator, m->patch_count, sizeof(double));
-    g.cumulative_area = (double *)meshfix__allocate(allocator, m->triangle_count, sizeof(double));
-    g.sample_start = (unsigned int *)meshfix__allocate(allocator, m->patch_count + 1, sizeof(unsigned int));
-    if (!g.patch_area || !g.cumulative_area || !g.sample_start || !meshfix__build_bvh(&g.bvh, m, allocator, meshfix__has_area)) {
+    g.sigma = m->options->evidence_sigma > 0 ? (double)m->options->evidence_sigma : 3.0;
+    g.patch_unit = (unsigned int *)meshfix__allocate(allocator, m->patch_count, sizeof(unsigned int));
+    g.patch_turn = (unsigned char *)meshfix__allocate(allocator, m->patch_count, 1);
+    g.triangle_unit = (unsigned int *)meshfix__allocate(allocator, m->triangle_count, sizeof(unsigned int));
+    if (!g.patch_unit || !g.patch_turn || !g.triangle_unit) {
         meshfix__free_geometry(&g);
         return 0;
     }
+    meshfix__fit_frame(&g.bvh, m);
     g.t_min = (float)(1e-5 * g.bvh.diagonal);
-    for (p = 0; p < m->patch_count; ++p) {
-        double sum = 0;
-        for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
-            double n[3], area;
-            meshfix__relative_normal(m, m->queue[i], n, &area);
-            sum += area;
-            g.cumulative_area[i] = sum;
-        }
-        g.patch_area[p] = sum;
-    }
-    if (policy != MESHFIX_POLICY_VISIBILITY)
-        meshfix__decide_shells(&g, r);
-    if (policy != MESHFIX_POLICY_OUTWARD)
-        ok = meshfix__decide_visibility(&g, r);
+    ok = policy == MESHFIX_POLICY_VISIBILITY ? meshfix__decide_by_visibility(&g, r) : meshfix__decide_by_shells(&g, r);
     meshfix__free_geometry(&g);
     return ok;
 }
-
 /* ===== >>report ===== */
 
 MESHFIX__PRIVATE unsigned int meshfix__flip_of(const meshfix__mesh *m, unsigned int t)
@@ -3303,20 +4549,41 @@ MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned
     return m->options->sdf_mode == MESHFIX_SDF_PER_TRIANGLE ? own_flip : patch_flip;
 }
 
-/* How clear a decision made from the patch's own sums was: the margin of
-   the vote that decided it, 0 a coin flip, 1 unanimous. */
-MESHFIX__PRIVATE float meshfix__confidence(const meshfix__mesh *m, unsigned int p, int policy,
-                                          const meshfix__patch_sums *s)
+/* The verdict of patch p: the geometric policies decided it per unit
+   before; the others decide it here from its sums. A verdict less
+   confident than min_confidence leaves the patch facing the way most of
+   its area faces. */
+MESHFIX__PRIVATE void meshfix__patch_verdict(const meshfix__mesh *m, unsigned int p, int policy,
+                                            const meshfix__patch_sums *s, meshfix__unit *u)
 {
-    double total = s->weight_kept + s->weight_reversed, margin = s->weight_kept - s->weight_reversed;
-    if (policy == MESHFIX_POLICY_SEED)
-        return 1.0f;
-    if (policy == MESHFIX_POLICY_SDF && s->area > 0)
-        return (float)((s->sdf_vote < 0 ? -s->sdf_vote : s->sdf_vote) / s->area);
-    if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_AUTO) && meshfix__is_closed_orientable(m, p) &&
-        meshfix__volume_is_meaningful(s->volume_relative, s->area))
-        return 1.0f;
-    return total > 0 ? (float)((margin < 0 ? -margin : margin) / total) : 0.0f;
+    const meshfix_options *o = m->options;
+    double sigma = o->evidence_sigma > 0 ? (double)o->evidence_sigma : 3.0;
+    if (m->patch_bits[p] & MESHFIX__PATCH_DECIDED) {
+        meshfix__patch_unit(s, u);
+        u->turn = (m->patch_bits[p] & MESHFIX__PATCH_FLIP) != 0;
+        u->confidence = m->confidence[p];
+        u->kind = m->patch_kind[p];
+    } else {
+        meshfix__decide_patch(m, policy, s, sigma, u);
+    }
+    if (u->confidence < o->min_confidence) {
+        u->turn = s->weight_kept < s->weight_reversed;
+        u->kind = MESHFIX__BY_NOTHING;
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__count_verdict(const meshfix__unit *u, size_t triangles, double doubtful,
+                                            meshfix_report *r)
+{
+    r->patches_by_volume += u->kind == MESHFIX__BY_VOLUME;
+    r->patches_by_parity += u->kind == MESHFIX__BY_PARITY;
+    r->patches_by_visibility += u->kind == MESHFIX__BY_ESCAPE;
+    r->patches_by_normals += u->kind == MESHFIX__BY_NORMALS;
+    r->patches_kept += u->kind == MESHFIX__BY_NOTHING || u->kind == MESHFIX__BY_POLICY;
+    if ((double)u->confidence < doubtful) {
+        r->patches_doubtful++;
+        r->triangles_doubtful += triangles;
+    }
 }
 
 /* Turns each patch as the policy decides (policy < 0: inspect, no turns),
@@ -3334,7 +4601,13 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         meshfix__sum_patch(m, p, &s);
         r->sdf_evaluations += s.sdf_evaluations;
         if (policy >= 0) {
-            turn = (unsigned int)meshfix__decide_patch(m, p, (meshfix_policy)policy, &s);
+            meshfix__unit verdict;
+            meshfix__patch_verdict(m, p, policy, &s, &verdict);
+            meshfix__count_verdict(&verdict, m->patch_start[p + 1] - m->patch_start[p],
+                                   meshfix__maxd(0.5, (double)o->min_confidence), r);
+            if (o->patch_confidence != NULL && p < o->patch_confidence_capacity)
+                o->patch_confidence[p] = verdict.confidence;
+            turn = verdict.turn;
             for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
                 unsigned int t = m->queue[i];
                 unsigned int flip = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ^ turn;
@@ -3357,10 +4630,6 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         if (out != NULL)
             meshfix__add_patch_to_component(m, p, &s, volume, out);
         m->component_bits[m->patch_link[p]] |= (unsigned char)bits;
-        if (o->patch_confidence != NULL && p < o->patch_confidence_capacity && policy >= 0)
-            o->patch_confidence[p] = m->confidence != NULL && (bits & MESHFIX__PATCH_DECIDED)
-                                         ? m->confidence[p]
-                                         : meshfix__confidence(m, p, policy, &s);
     }
     for (c = 0; c < m->component_count; ++c) {
         r->components_closed += (size_t)!(m->component_bits[c] & MESHFIX__PATCH_NOT_MANIFOLD);
@@ -3409,6 +4678,17 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
     m->patch_bits = block + plan->patch_bits;
 }
 
+/* The geometric policies build units, trees and rays, except for one
+   closed shell alone: nothing can enclose it, its volume decides. */
+MESHFIX__PRIVATE int meshfix__needs_geometry(const meshfix__mesh *m, int policy)
+{
+    if (policy == MESHFIX_POLICY_VISIBILITY)
+        return m->patch_count != 0;
+    if (policy != MESHFIX_POLICY_AUTO && policy != MESHFIX_POLICY_OUTWARD)
+        return 0;
+    return m->patch_count > 1 || (m->patch_count == 1 && !meshfix__is_closed_orientable(m, 0));
+}
+
 /* Stages 2 to 5 on a bound mesh; fills r and the component outputs. The
    counts that only describe the mesh (duplicates, non-manifold vertices,
    inconsistent edges, Euler characteristic) are skipped when `full` is 0:
@@ -3438,15 +4718,15 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
 
     n = o->components != NULL ? o->components_capacity : 0;
     n = m->component_count < n ? m->component_count : n;
-    if (policy >= 0) {
-        /* the only stage that allocates: ray queries for some policies */
-        if (o->patch_confidence != NULL && m->patch_count != 0) {
-            m->confidence = (float *)meshfix__allocate(allocator, m->patch_count, sizeof(float));
-            if (m->confidence == NULL)
-                return MESHFIX_ERROR_OUT_OF_MEMORY;
-        }
-        if (!meshfix__decide_by_geometry(m, allocator, r)) {
+    if (meshfix__needs_geometry(m, policy)) {
+        /* the only stage that allocates: units, trees and rays */
+        int ok;
+        m->confidence = (float *)meshfix__allocate(allocator, m->patch_count, sizeof(float));
+        m->patch_kind = (unsigned char *)meshfix__allocate(allocator, m->patch_count, 1);
+        ok = m->confidence != NULL && m->patch_kind != NULL && meshfix__decide_by_geometry(m, allocator, r);
+        if (!ok) {
             meshfix__release(allocator, m->confidence);
+            meshfix__release(allocator, m->patch_kind);
             return MESHFIX_ERROR_OUT_OF_MEMORY;
         }
     }
@@ -3454,7 +4734,9 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
         MESHFIX_MEMSET(o->components, 0, n * sizeof(meshfix_component));
     meshfix__orient_patches(m, policy, o, r);
     meshfix__release(allocator, m->confidence);
+    meshfix__release(allocator, m->patch_kind);
     m->confidence = NULL;
+    m->patch_kind = NULL;
 #ifdef MESHFIX_DEBUG
     /* the plain per-triangle SDF rule does not promise consistency */
     if (policy >= 0 && !(policy == MESHFIX_POLICY_SDF && o->sdf_mode == MESHFIX_SDF_PER_TRIANGLE))

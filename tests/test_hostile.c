@@ -11,6 +11,7 @@
 #include "../examples/meshgen.h"
 
 #include "check.h"
+#include "internals.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -524,31 +525,27 @@ static void make_shrinking_planes(mio_mesh *g, unsigned int planes)
 static void test_deep_tree(void)
 {
     mio_mesh g;
-    meshfix__plan plan;
     meshfix__mesh m;
     meshfix__bvh bvh;
     meshfix_allocator allocator;
     meshfix_options o;
     meshfix_report r;
     unsigned char *block;
-    unsigned int t, i, *group;
+    unsigned int t, i, *units, root;
     unsigned long long seed = 1;
     size_t depth;
     int p;
     make_shrinking_planes(&g, 45);
-    group = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
-    meshfix__make_plan(&plan, g.vertex_count, g.index_count / 3);
-    block = (unsigned char *)malloc(plan.total + 16);
     memset(&o, 0, sizeof(o));
-    meshfix__bind(&m, block + (16 - (size_t)block % 16) % 16, &plan, g.indices, g.index_count, g.positions, 12,
-                  g.vertex_count, &o, 0);
-    meshfix__mark_degenerate(&m);
     memset(&allocator, 0, sizeof(allocator));
-    CHECK(meshfix__build_bvh(&bvh, &m, &allocator, meshfix__has_area));
-    depth = tree_depth(&bvh, 0);
+    block = bind_mesh(&m, &o, g.indices, g.index_count, g.positions, g.vertex_count);
+    units = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
+    root = whole_tree(&bvh, &m, &allocator, units);
+    CHECK(root != MESHFIX__NONE);
+    depth = tree_depth(&bvh, root);
     printf("    %u triangles shrinking toward the origin: tree depth %lu, traversal stack %d\n", bvh.count,
            (unsigned long)depth, MESHFIX__BVH_STACK);
-    CHECK(depth + 1 <= MESHFIX__BVH_STACK);
+    CHECK(2 * depth + 1 <= MESHFIX__BVH_STACK);
     for (t = 0; t < bvh.count; ++t)
         for (i = 0; i < 16; ++i) {
             float from[3], d[3];
@@ -562,9 +559,7 @@ static void test_deep_tree(void)
             meshfix__setup_ray(&ray, from, d, 0.0f, 1e30f);
             q.mode = MESHFIX__COUNT_HITS;
             q.skip = MESHFIX__NONE;
-            q.group = group;
-            q.skip_group = 1;
-            meshfix__trace(&bvh, &ray, &q);
+            meshfix__trace(&bvh, root, &ray, &q);
         }
     meshfix__free_bvh(&bvh, &allocator);
     for (p = 0; p < POLICIES; ++p) {
@@ -573,7 +568,7 @@ static void test_deep_tree(void)
                  MESHFIX_OK);
     }
     free(block);
-    free(group);
+    free(units);
     mio_free(&g);
 }
 

@@ -9,6 +9,7 @@
 #include "../examples/meshgen.h"
 
 #include "check.h"
+#include "internals.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -685,22 +686,20 @@ static void test_weld(void)
 static void test_watertight_rays(void)
 {
     mio_mesh g;
-    meshfix__plan plan;
     meshfix__mesh m;
     meshfix__bvh bvh;
     meshfix_allocator allocator;
+    meshfix_options o;
     unsigned char *block;
-    unsigned int *group;
+    unsigned int *units, root;
     size_t v, t, bad = 0, rays = 0;
     CHECK(gen_sphere(&g, 18, 26, 0.1f, -0.2f, 0.3f, 1.5f));
-    meshfix__make_plan(&plan, g.vertex_count, g.index_count / 3);
-    block = (unsigned char *)malloc(plan.total + 16);
-    meshfix__bind(&m, block + (16 - (size_t)block % 16) % 16, &plan, g.indices, g.index_count, g.positions, 12,
-                  g.vertex_count, NULL, 0);
-    meshfix__mark_degenerate(&m);
+    memset(&o, 0, sizeof(o));
     memset(&allocator, 0, sizeof(allocator));
-    CHECK(meshfix__build_bvh(&bvh, &m, &allocator, meshfix__has_area));
-    group = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
+    block = bind_mesh(&m, &o, g.indices, g.index_count, g.positions, g.vertex_count);
+    units = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
+    root = whole_tree(&bvh, &m, &allocator, units);
+    CHECK(root != MESHFIX__NONE);
     /* rays in the tree's frame, where its corners are */
     for (v = 0; v < g.vertex_count + g.index_count; ++v) {
         const float model_centre[3] = {0.1f, -0.2f, 0.3f};
@@ -708,7 +707,7 @@ static void test_watertight_rays(void)
         meshfix__ray ray;
         meshfix__query q;
         int k;
-        meshfix__frame_vertex_of(&bvh, model_centre, centre);
+        meshfix__frame_float(&bvh, model_centre, centre);
         if (v < g.vertex_count) {
             meshfix__frame_vertex(&bvh, &m, (unsigned int)v, target);
         } else {
@@ -723,12 +722,10 @@ static void test_watertight_rays(void)
         meshfix__setup_ray(&ray, centre, d, 0.0f, 1e30f);
         q.mode = MESHFIX__COUNT_HITS;
         q.skip = MESHFIX__NONE;
-        q.group = group;
-        q.skip_group = 1;
-        meshfix__trace(&bvh, &ray, &q);
+        meshfix__trace(&bvh, root, &ray, &q);
         bad += q.hits != 1;
         q.mode = MESHFIX__CLOSEST_HIT;
-        meshfix__trace(&bvh, &ray, &q);
+        meshfix__trace(&bvh, root, &ray, &q);
         bad += !(q.hits == 1 && fabsf(q.t - 1.0f) < 1e-4f);
         rays++;
     }
@@ -737,16 +734,16 @@ static void test_watertight_rays(void)
         float from[3];
         meshfix__ray ray;
         meshfix__query q;
-        meshfix__frame_vertex_of(&bvh, far_away, from);
+        meshfix__frame_float(&bvh, far_away, from);
         meshfix__setup_ray(&ray, from, away, 0.0f, 1e30f);
         q.mode = MESHFIX__ANY_HIT;
         q.skip = MESHFIX__NONE;
-        bad += meshfix__trace(&bvh, &ray, &q);
+        bad += meshfix__trace(&bvh, root, &ray, &q);
     }
     printf("    %lu rays through vertices and edges: %lu wrong\n", (unsigned long)rays, (unsigned long)bad);
     CHECK_EQ(bad, 0);
     meshfix__free_bvh(&bvh, &allocator);
-    free(group);
+    free(units);
     free(block);
     mio_free(&g);
 }

@@ -1,0 +1,37 @@
+/* Helpers for the tests that look inside the implementation (include
+   after meshfix.h with MESHFIX_IMPLEMENTATION). */
+#ifndef MESHFIX_TESTS_INTERNALS_H
+#define MESHFIX_TESTS_INTERNALS_H
+#include <stdlib.h>
+#include <string.h>
+
+/* A mesh bound to scratch of its own (free `block` after), degenerate and
+   non-finite triangles marked. */
+static unsigned char *bind_mesh(meshfix__mesh *m, const meshfix_options *o, const unsigned int *indices,
+                                size_t index_count, const float *positions, size_t vertex_count)
+{
+    meshfix__plan plan;
+    unsigned char *block;
+    meshfix__make_plan(&plan, vertex_count, index_count / 3);
+    block = (unsigned char *)malloc(plan.total + 16);
+    meshfix__bind(m, block + (16 - (size_t)block % 16) % 16, &plan, indices, index_count, positions, 12, vertex_count,
+                  o, 0);
+    meshfix__mark_degenerate(m);
+    return block;
+}
+
+/* The ray tree over every triangle with an area, as one unit; returns its
+   root. `units` holds a word per triangle. */
+static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, const meshfix_allocator *a,
+                               unsigned int *units)
+{
+    unsigned int t;
+    for (t = 0; t < m->triangle_count; ++t)
+        units[t] = meshfix__has_area(m, t) ? 0 : MESHFIX__NONE;
+    memset(bvh, 0, sizeof(*bvh));
+    meshfix__fit_frame(bvh, m);
+    if (!meshfix__prepare_bvh(bvh, m, a, units, 1))
+        return MESHFIX__NONE;
+    return meshfix__unit_tree(bvh, m, 0);
+}
+#endif
