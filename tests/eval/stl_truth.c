@@ -28,7 +28,10 @@
    note column for files that were not scored; no total rows.
 
    Build:  cc -std=c99 -O2 -I. tests/eval/stl_truth.c -lm
-   Usage:  stl_truth [--policy NAME] [--seed N] [--csv] FILE_OR_DIRECTORY...
+   --normals passes the stored normals to meshfix as evidence (what the
+   command-line tool does with a file's normals).
+
+   Usage:  stl_truth [--policy NAME] [--normals] [--seed N] [--csv] FILE_OR_DIRECTORY...
            NAME: default (options NULL), auto, seed, majority, outward,
            visibility, up. Directories are searched for *.stl recursively.
    Exit:   0; 1 for bad usage; 2 when a meshfix call failed on a file.
@@ -73,6 +76,7 @@ static const policy_choice POLICIES[] = {
     {"outward", 1, MESHFIX_POLICY_OUTWARD},
     {"visibility", 1, MESHFIX_POLICY_VISIBILITY},
     {"up", 1, MESHFIX_POLICY_UP},
+    {"normals", 1, MESHFIX_POLICY_NORMALS},
 };
 
 static const policy_choice *find_policy(const char *name)
@@ -538,8 +542,8 @@ static int allocate_work(file_work *w)
 /* Repairs (indices, positions) under the policy and sets flipped[t] for
    each triangle the call reversed. The one place that runs a policy: new
    options (authored normals as evidence, ...) belong here. */
-static meshfix_result repair(const policy_choice *policy, const unsigned int *indices, size_t triangles,
-                             const float *positions, size_t vertex_count, unsigned int *repaired,
+static meshfix_result repair(const policy_choice *policy, const float *normals, const unsigned int *indices,
+                             size_t triangles, const float *positions, size_t vertex_count, unsigned int *repaired,
                              unsigned char *flipped, meshfix_report *report)
 {
     meshfix_options options;
@@ -547,8 +551,9 @@ static meshfix_result repair(const policy_choice *policy, const unsigned int *in
     size_t t;
     memset(&options, 0, sizeof(options));
     options.policy = policy->policy;
+    options.triangle_normals = normals; /* the stored normals as evidence (--normals), or NULL */
     r = meshfix_orient(repaired, indices, 3 * triangles, positions, vertex_count, 3 * sizeof(float),
-                       policy->named ? &options : NULL, report);
+                       policy->named || normals != NULL ? &options : NULL, report);
     if (r != MESHFIX_OK)
         return r;
     /* a flip writes (a, c, b): the second index tells */
@@ -651,12 +656,15 @@ static meshfix_result weld(file_work *w)
 
 /* Repairs the shipped winding (timed, with a report), then a copy with a
    random half of the triangles reversed. */
-static meshfix_result repair_both(file_work *w, const policy_choice *policy, unsigned int seed, file_score *score)
+static meshfix_result repair_both(file_work *w, const policy_choice *policy, int use_normals, unsigned int seed,
+                                  file_score *score)
 {
     meshfix_report report;
     size_t n = w->mesh.triangles;
+    const float *normals = use_normals ? w->mesh.normals : NULL;
     double start = now_ms();
-    meshfix_result r = repair(policy, w->indices, n, w->mesh.corners, 3 * n, w->repaired, w->flipped, &report);
+    meshfix_result r = repair(policy, normals, w->indices, n, w->mesh.corners, 3 * n, w->repaired, w->flipped,
+                              &report);
     score->orient_ms = now_ms() - start;
     if (r != MESHFIX_OK)
         return r;
@@ -665,10 +673,10 @@ static meshfix_result repair_both(file_work *w, const policy_choice *policy, uns
     score->edges_boundary = report.edges_boundary;
     score->edges_inconsistent = report.edges_inconsistent_input;
     reverse_random_half(w, seed);
-    return repair(policy, w->altered, n, w->mesh.corners, 3 * n, w->repaired, w->flipped_half, NULL);
+    return repair(policy, normals, w->altered, n, w->mesh.corners, 3 * n, w->repaired, w->flipped_half, NULL);
 }
 
-static file_status score_file(const char *path, const policy_choice *policy, unsigned int seed,
+static file_status score_file(const char *path, const policy_choice *policy, int use_normals, unsigned int seed,
                               file_score *score, char *error)
 {
     file_work w;
@@ -691,7 +699,7 @@ static file_status score_file(const char *path, const policy_choice *policy, uns
     if (r == MESHFIX_OK)
         r = best_by_patch(&w, &score->agree_best);
     if (r == MESHFIX_OK)
-        r = repair_both(&w, policy, seed, score);
+        r = repair_both(&w, policy, use_normals, seed, score);
     if (r != MESHFIX_OK) {
         fail(error, "%s", meshfix_result_string(r));
         free_work(&w);
@@ -972,12 +980,13 @@ typedef struct settings {
     const policy_choice *policy;
     unsigned int seed;
     int csv;
+    int normals; /* pass the stored normals to meshfix as evidence */
 } settings;
 
 static int usage(void)
 {
-    fprintf(stderr, "usage: stl_truth [--policy default|auto|seed|majority|outward|visibility|up] "
-                    "[--seed N] [--csv] FILE_OR_DIRECTORY...\n");
+    fprintf(stderr, "usage: stl_truth [--policy default|auto|seed|majority|outward|visibility|up|normals] "
+                    "[--normals] [--seed N] [--csv] FILE_OR_DIRECTORY...\n");
     return 1;
 }
 
@@ -989,9 +998,12 @@ static int parse_settings(int argc, char **argv, settings *s)
     s->policy = &POLICIES[0];
     s->seed = 1;
     s->csv = 0;
+    s->normals = 0;
     for (i = 1; i < argc && strncmp(argv[i], "--", 2) == 0; i++) {
         if (strcmp(argv[i], "--csv") == 0) {
             s->csv = 1;
+        } else if (strcmp(argv[i], "--normals") == 0) {
+            s->normals = 1;
         } else if (strcmp(argv[i], "--policy") == 0 && i + 1 < argc) {
             s->policy = find_policy(argv[++i]);
             if (s->policy == NULL)
@@ -1057,7 +1069,7 @@ int main(int argc, char **argv)
     for (f = 0; f < list.count; f++) {
         file_score score;
         char error[ERROR_SIZE] = "";
-        file_status status = score_file(list.paths[f], s.policy, s.seed, &score, error);
+        file_status status = score_file(list.paths[f], s.policy, s.normals, s.seed, &score, error);
         report_file(&s, list.paths[f], status, &score, error, &all);
         fflush(stdout);
     }
