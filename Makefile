@@ -22,19 +22,19 @@ $(B)/demo_mesh: examples/demo_mesh.c $(HEADERS) | $(B)
 # Each C suite is built four ways: plain, with the sanitizers, with
 # -O3 -ffast-math (what engines build with) and, where a 32-bit toolchain
 # is installed (tests/run_all.sh checks), with -m32.
-SUITES = test_meshfix test_sdf test_visibility test_hostile
+SUITES = test_meshfix test_sdf test_visibility test_hostile test_trust
 FAST = -O3 -ffast-math -g
 
-$(B)/test_%: tests/test_%.c tests/check.h tests/internals.h $(HEADERS) | $(B)
+$(B)/test_%: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
 
-$(B)/test_%_asan: tests/test_%.c tests/check.h tests/internals.h $(HEADERS) | $(B)
+$(B)/test_%_asan: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ $< -lm
 
-$(B)/test_%_fast: tests/test_%.c tests/check.h tests/internals.h $(HEADERS) | $(B)
+$(B)/test_%_fast: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -std=c99 $(FAST) $(WARN) -o $@ $< -lm
 
-$(B)/test_%_m32: tests/test_%.c tests/check.h tests/internals.h $(HEADERS) | $(B)
+$(B)/test_%_m32: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -m32 -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
 
 $(B)/test_openmesh: tests/test_openmesh.cpp $(HEADERS) | $(B)

@@ -1703,8 +1703,11 @@ typedef struct meshfix__bvh_node {
 typedef struct meshfix__bvh {
     meshfix__bvh_node *nodes;  /* a unit's tree at 2 * its first slot; the top tree after 2 * count */
     unsigned int *order;       /* per slot: its triangle; the slots of a unit lie together */
+    unsigned int *by_index;    /* the same triangles, each unit's in index order: the trees reorder
+                                  `order` by float arithmetic, which builds round differently, and
+                                  samples must not depend on it */
     float *corners;            /* per slot: 9 floats, the corners in the frame */
-    double *cumulative_area;   /* per slot: area of its unit's triangles up to it (sampling) */
+    double *cumulative_area;   /* per entry of by_index: its unit's area up to it (sampling) */
     unsigned int *unit_first;  /* per unit + 1: its first slot */
     unsigned int *unit_root;   /* per unit: its tree's root, NONE until built */
     unsigned int unit_count;
@@ -2065,9 +2068,11 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
     b->count = n;
     b->order = (unsigned int *)meshfix__allocate(a, n, sizeof(unsigned int));
     b->corners = (float *)meshfix__allocate(a, 9 * (size_t)n, sizeof(float));
+    b->by_index = (unsigned int *)meshfix__allocate(a, n, sizeof(unsigned int));
     b->cumulative_area = (double *)meshfix__allocate(a, n, sizeof(double));
     b->nodes = (meshfix__bvh_node *)meshfix__allocate(a, 2 * ((size_t)n + unit_count) + 1, sizeof(meshfix__bvh_node));
-    if (b->order == NULL || b->corners == NULL || b->cumulative_area == NULL || b->nodes == NULL)
+    if (b->order == NULL || b->by_index == NULL || b->corners == NULL || b->cumulative_area == NULL ||
+        b->nodes == NULL)
         return 0;
     /* unit_first[u] moves to the end of unit u while slots are placed */
     for (t = 0; t < m->triangle_count; ++t)
@@ -2076,6 +2081,7 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
     for (u = unit_count; u > 0; --u)
         b->unit_first[u] = b->unit_first[u - 1];
     b->unit_first[0] = 0;
+    MESHFIX_MEMCPY(b->by_index, b->order, n * sizeof(unsigned int));
     return 1;
 }
 
@@ -2155,6 +2161,7 @@ MESHFIX__PRIVATE void meshfix__free_bvh(meshfix__bvh *b, const meshfix_allocator
 {
     meshfix__release(a, b->order);
     meshfix__release(a, b->corners);
+    meshfix__release(a, b->by_index);
     meshfix__release(a, b->cumulative_area);
     meshfix__release(a, b->nodes);
     meshfix__release(a, b->unit_first);
@@ -2544,7 +2551,7 @@ MESHFIX__PRIVATE void meshfix__cumulate_areas(meshfix__geometry *g)
     for (u = 0; u < b->unit_count; ++u) {
         double sum = 0, n[3], area;
         for (i = b->unit_first[u]; i < b->unit_first[u + 1]; ++i) {
-            meshfix__relative_normal(g->m, b->order[i], n, &area);
+            meshfix__relative_normal(g->m, b->by_index[i], n, &area);
             sum += area;
             b->cumulative_area[i] = sum;
         }
@@ -2568,7 +2575,7 @@ MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, 
         else
             hi = mid;
     }
-    t = b->order[lo];
+    t = b->by_index[lo];
     /* corners by vertex id: the point must not move when t is flipped */
     meshfix__load_corners(b, g->m, t, corners);
     su = (float)MESHFIX_SQRT((double)s);
@@ -3637,16 +3644,19 @@ MESHFIX__PRIVATE void meshfix__sum_units(meshfix__geometry *g)
 /* ===== >>evidence ===== */
 
 /* How much each kind of evidence counts next to the prior (the area share
-   facing the unit's majority side as given: 1 for a consistent unit) and
-   the caller's normals (2). A volume (closed or nearly closed units),
-   crossings of a shell around an open unit, or an open unit's own crossings
-   when the scene was reversed, count 2: enough to turn a consistent unit
-   over. An open unit's own crossings otherwise, and escape visibility,
-   count 1: they decide what its own triangles leave open, but never turn
-   over a consistent open unit, because open surfaces face the way their
-   authors chose (a terrain faces up although more rays escape below it;
-   the walls of a pipe in a CFD case face the fluid inside). */
-#define MESHFIX__WEIGHT_NORMALS 2.0
+   facing the unit's majority side as given: 1 for a consistent unit):
+   - the caller's normals, 2.5: they outweigh any geometry once the prior
+     is gone, and lose to geometry and prior together (a file whose
+     normals all point in while its winding and volume point out);
+   - a volume (closed or nearly closed units), crossings of a shell around
+     an open unit, or an open unit's own crossings when the scene was
+     reversed, 2: enough to turn a consistent unit over;
+   - an open unit's own crossings otherwise, and escaping rays, 1: they
+     decide what its own triangles leave open, but never turn over a
+     consistent open unit, because open surfaces face the way their
+     authors chose (a terrain faces up although more rays escape below
+     it; the walls of a pipe in a CFD case face the fluid inside). */
+#define MESHFIX__WEIGHT_NORMALS 2.5
 #define MESHFIX__WEIGHT_STRONG 2.0
 #define MESHFIX__WEIGHT_WEAK 1.0
 

@@ -10,6 +10,8 @@
 #include "../examples/meshio.h"
 #define MESHGEN_IMPLEMENTATION
 #include "../examples/meshgen.h"
+#define SCENES_IMPLEMENTATION
+#include "scenes.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,10 +43,10 @@ static unsigned int digest_report(unsigned int h, const meshfix_report *r)
 
 static void run(const char *name, const mio_mesh *g)
 {
-    static const char *const names[] = {"auto", "seed", "majority", "outward", "visibility", "up"};
+    static const char *const names[] = {"auto", "seed", "majority", "outward", "visibility", "up", "normals"};
     static const meshfix_policy policies[] = {MESHFIX_POLICY_AUTO,    MESHFIX_POLICY_SEED,
                                               MESHFIX_POLICY_MAJORITY, MESHFIX_POLICY_OUTWARD,
-                                              MESHFIX_POLICY_VISIBILITY, MESHFIX_POLICY_UP};
+                                              MESHFIX_POLICY_VISIBILITY, MESHFIX_POLICY_UP, MESHFIX_POLICY_NORMALS};
     size_t triangles = g->index_count / 3, p;
     unsigned int *out = (unsigned int *)malloc(g->index_count * sizeof(unsigned int) + 4);
     unsigned int *ids = (unsigned int *)malloc(triangles * sizeof(unsigned int) + 4);
@@ -59,6 +61,7 @@ static void run(const char *name, const mio_mesh *g)
         char text[32];
         memset(&o, 0, sizeof(o));
         o.policy = policies[p];
+        o.vertex_normals = g->positions; /* normals pointing away from the origin: evidence to weigh */
         o.flipped = flipped;
         o.patch_ids = ids;
         o.patch_confidence = confidence;
@@ -86,36 +89,56 @@ static void run(const char *name, const mio_mesh *g)
     free(flipped);
 }
 
-int main(void)
+/* The input meshes travel in a file from the reference build to the
+   others: the generators use sin and cos, which builds round differently,
+   and the comparison is about meshfix, given the same input. */
+static int save(FILE *f, const char *name, const mio_mesh *g)
+{
+    unsigned int counts[3];
+    counts[0] = (unsigned int)strlen(name), counts[1] = (unsigned int)g->vertex_count;
+    counts[2] = (unsigned int)g->index_count;
+    return fwrite(counts, sizeof(counts), 1, f) == 1 && fwrite(name, 1, counts[0], f) == counts[0] &&
+           fwrite(g->positions, 3 * sizeof(float), g->vertex_count, f) == g->vertex_count &&
+           fwrite(g->indices, sizeof(unsigned int), g->index_count, f) == g->index_count;
+}
+
+/* Reads the next mesh; 0 at the end of the file. */
+static int load_next(FILE *f, char *name, mio_mesh *g)
+{
+    unsigned int counts[3];
+    if (fread(counts, sizeof(counts), 1, f) != 1 || counts[0] >= 64)
+        return 0;
+    g->vertex_count = counts[1], g->index_count = counts[2];
+    g->positions = (float *)malloc(3 * sizeof(float) * g->vertex_count + 4);
+    g->indices = (unsigned int *)malloc(sizeof(unsigned int) * g->index_count + 4);
+    name[counts[0]] = 0;
+    return fread(name, 1, counts[0], f) == counts[0] &&
+           fread(g->positions, 3 * sizeof(float), g->vertex_count, f) == g->vertex_count &&
+           fread(g->indices, sizeof(unsigned int), g->index_count, f) == g->index_count;
+}
+
+static int generate(FILE *f)
 {
     mio_mesh g, t;
     unsigned long long seed = 21;
     size_t i;
-    if (!gen_sphere(&g, 12, 16, 0.1f, 0.2f, 0.3f, 1))
-        return 1;
+    int ok = gen_sphere(&g, 12, 16, 0.1f, 0.2f, 0.3f, 1);
     gen_flip_random(&g, 0.3, 1, NULL);
-    run("sphere, 30% reversed", &g);
-    if (!gen_sphere(&t, 8, 10, 0.1f, 0.2f, 0.3f, 0.5f))
-        return 1;
-    gen_append(&g, &t);
+    ok = ok && save(f, "sphere, 30% reversed", &g) && gen_sphere(&t, 8, 10, 0.1f, 0.2f, 0.3f, 0.5f);
+    ok = ok && gen_append(&g, &t) && save(f, "sphere with a cavity", &g);
     mio_free(&t);
-    run("sphere with a cavity", &g);
     mio_free(&g);
-    if (!gen_torus(&g, 24, 12, 1, 0.3f))
-        return 1;
+    ok = ok && gen_torus(&g, 24, 12, 1, 0.3f);
     gen_flip_random(&g, 0.6, 2, NULL);
-    run("torus, 60% reversed", &g);
+    ok = ok && save(f, "torus, 60% reversed", &g);
     mio_free(&g);
-    if (!gen_grid(&g, 12, 9))
-        return 1;
-    for (i = 0; i < g.vertex_count; ++i)
+    ok = ok && gen_grid(&g, 12, 9);
+    for (i = 0; ok && i < g.vertex_count; ++i)
         g.positions[3 * i + 2] = (float)(0.05 * gen_uniform(&seed));
     gen_flip_random(&g, 0.2, 3, NULL);
-    run("terrain, 20% reversed", &g);
+    ok = ok && save(f, "terrain, 20% reversed", &g);
     mio_free(&g);
-    if (!gen_mobius(&g, 30))
-        return 1;
-    run("moebius", &g);
+    ok = ok && gen_mobius(&g, 30) && save(f, "moebius", &g);
     mio_free(&g);
     /* a soup of 400 triangles in a box, every corner its own vertex */
     g.vertex_count = g.index_count = 1200;
@@ -125,7 +148,42 @@ int main(void)
         g.positions[i] = (float)gen_uniform(&seed);
     for (i = 0; i < g.index_count; ++i)
         g.indices[i] = (unsigned int)i;
-    run("soup of 400", &g);
+    ok = ok && save(f, "soup of 400", &g);
     mio_free(&g);
+    /* generated scenes, 30% of their triangles reversed */
+    {
+        static const char *scenes[] = {"cavity_cut", "glass", "assembly", "parts"};
+        for (i = 0; ok && i < sizeof(scenes) / sizeof(scenes[0]); ++i) {
+            scene s;
+            scene_trial trial;
+            ok = scene_build(&s, scenes[i], SCENE_SMALL) == 1 && scene_trial_make(&trial, &s, &SCENE_CORRUPTIONS[4], 3);
+            ok = ok && save(f, scenes[i], &trial.mesh);
+            scene_trial_free(&trial);
+            scene_free(&s);
+        }
+    }
+    return ok;
+}
+
+/* outputs --write FILE: generates the meshes into FILE; outputs FILE:
+   prints the digest lines of the meshes in FILE. */
+int main(int argc, char **argv)
+{
+    FILE *f;
+    char name[64];
+    mio_mesh g;
+    if (argc == 3 && strcmp(argv[1], "--write") == 0) {
+        f = fopen(argv[2], "wb");
+        if (f == NULL || !generate(f) || fclose(f) != 0)
+            return 1;
+        return 0;
+    }
+    if (argc != 2 || (f = fopen(argv[1], "rb")) == NULL)
+        return 1;
+    while (load_next(f, name, &g)) {
+        run(name, &g);
+        mio_free(&g);
+    }
+    fclose(f);
     return 0;
 }

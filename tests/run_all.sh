@@ -62,13 +62,16 @@ suite "visibility, nesting, weld, rays" build/test_visibility
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_visibility_asan
 suite "hostile input, allocation failure, adversarial sizes" build/test_hostile
 MESHFIX_ADVERSARIAL_N=20000 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_hostile_asan
-for t in test_meshfix test_sdf test_visibility test_hostile; do
+suite "trust: correct meshes unchanged, open parts, assemblies and cut cavities right" build/test_trust
+suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_trust_asan
+suite "the generated scenes are what they claim" sh -c "$CC -std=c99 -O2 -I. -o $out/scenes_check tests/eval/scenes_check.c -lm && $out/scenes_check"
+for t in test_meshfix test_sdf test_visibility test_hostile test_trust; do
     suite "$t built with -O3 -ffast-math (NaN tests on bit patterns)" build/${t}_fast
 done
 
 # 32-bit: size_t of 4 bytes, x87 floating point
 if echo 'int main(void){return 0;}' | $CC -m32 -x c - -o "$out/m32probe" >/dev/null 2>&1; then
-    for t in test_meshfix test_sdf test_visibility test_hostile; do
+    for t in test_meshfix test_sdf test_visibility test_hostile test_trust; do
         if $MAKE -s build/${t}_m32 >"$out/m32build.log" 2>&1; then
             suite "$t built with -m32" build/${t}_m32
         else
@@ -83,29 +86,34 @@ else
 fi
 
 echo "== the same outputs from every build"
-outputs() { # name, compiler and flags...: builds tests/outputs.c and writes its lines
+outputs() { # name, compiler and flags...: builds tests/outputs.c, prints its lines for the reference input
     local name=$1
     shift
-    "$@" -std=c99 -w tests/outputs.c -o "$out/outputs_$name" -lm && "$out/outputs_$name" >"$out/outputs_$name.txt"
+    "$@" -std=c99 -w -Itests tests/outputs.c -o "$out/outputs_$name" -lm &&
+        "$out/outputs_$name" "$out/outputs_input.bin" >"$out/outputs_$name.txt"
 }
 same_outputs() { # name, compiler and flags...: as the -O0 reference
     outputs "$@" && cmp "$out/outputs_O0.txt" "$out/outputs_$1.txt"
 }
+check "outputs: $CC -O0 (the reference, and the input meshes)" sh -c \
+    "$CC -std=c99 -O0 -w -Itests tests/outputs.c -o $out/outputs_make -lm && $out/outputs_make --write $out/outputs_input.bin"
 check "outputs: $CC -O0 (the reference)" outputs O0 $CC -O0
 check "outputs: $CC -O2 gives the reference's" same_outputs O2 $CC -O2
 check "outputs: $CC -O3 -ffast-math gives the reference's" same_outputs fast $CC -O3 -ffast-math
 if command -v clang >/dev/null 2>&1; then
     check "outputs: clang -O2 gives the reference's" same_outputs clang clang -O2
+    check "outputs: clang -Ofast gives the reference's" same_outputs clangfast clang -Ofast
 fi
 if [ "$m32" -eq 1 ]; then
-    check "outputs: $CC -m32 -O2 gives the reference's" same_outputs m32 $CC -m32 -O2
+    check "outputs: $CC -m32 -O2 (x87) gives the reference's" same_outputs m32 $CC -m32 -O2
+    check "outputs: $CC -m32 -O3 -ffast-math gives the reference's" same_outputs m32fast $CC -m32 -O3 -ffast-math
 fi
 
 suite "OpenMesh as oracle" build/test_openmesh
 if command -v valgrind >/dev/null 2>&1; then
     # memcheck: any error or leak fails the run (exit code 99)
     VG="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect"
-    for t in test_meshfix test_sdf test_visibility test_hostile; do
+    for t in test_meshfix test_sdf test_visibility test_hostile test_trust; do
         MESHFIX_ADVERSARIAL_N=5000 suite "valgrind memcheck: $t" $VG build/$t
     done
 else

@@ -78,6 +78,40 @@ int scene_build(scene *s, const char *name, scene_size size);
 void scene_free(scene *s);
 /* Area of triangle t (double precision). */
 double scene_triangle_area(const mio_mesh *m, size_t t);
+
+/* The corruptions a scene is repaired from, each keeping the truth. Some
+   leave no trace of which side of a flat sheet was meant: there, flat
+   parts are left out of the score (`scored`). */
+typedef enum scene_corruption_kind {
+    SCENE_KEEP,       /* correct as built */
+    SCENE_SHUFFLE,    /* correct, triangles shuffled, corners rotated */
+    SCENE_INSIDE_OUT, /* every triangle reversed */
+    SCENE_PATCHES,    /* whole patches of a cut scene reversed with probability p */
+    SCENE_RANDOM      /* triangles reversed with probability p */
+} scene_corruption_kind;
+
+typedef struct scene_corruption {
+    const char *name;
+    scene_corruption_kind kind;
+    double p;
+    int hides_convention;
+} scene_corruption;
+
+#define SCENE_CORRUPTION_COUNT 6
+extern const scene_corruption SCENE_CORRUPTIONS[SCENE_CORRUPTION_COUNT];
+
+/* One corrupted copy of a scene; positions are borrowed from it. */
+typedef struct scene_trial {
+    mio_mesh mesh;
+    unsigned char *truth;  /* as the corrupted input stands */
+    unsigned int *part;
+    unsigned char *scored; /* 0: undecided, left out of the score */
+    unsigned int *from;    /* per triangle: its index in the scene */
+} scene_trial;
+
+/* Returns 0 when out of memory. */
+int scene_trial_make(scene_trial *t, const scene *s, const scene_corruption *c, unsigned long long seed);
+void scene_trial_free(scene_trial *t);
 #endif
 
 #ifdef SCENES_IMPLEMENTATION
@@ -602,5 +636,61 @@ double scene_triangle_area(const mio_mesh *m, size_t t)
     n[1] = u[2] * v[0] - u[0] * v[2];
     n[2] = u[0] * v[1] - u[1] * v[0];
     return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+const scene_corruption SCENE_CORRUPTIONS[SCENE_CORRUPTION_COUNT] = {
+    {"correct", SCENE_KEEP, 0, 0},      {"shuffled", SCENE_SHUFFLE, 0, 0},     {"inside-out", SCENE_INSIDE_OUT, 0, 1},
+    {"patches", SCENE_PATCHES, 0.5, 1}, {"random-0.3", SCENE_RANDOM, 0.3, 0}, {"random-0.5", SCENE_RANDOM, 0.5, 1},
+};
+
+void scene_trial_free(scene_trial *t)
+{
+    free(t->mesh.indices);
+    free(t->truth);
+    free(t->part);
+    free(t->scored);
+    free(t->from);
+}
+
+int scene_trial_make(scene_trial *t, const scene *s, const scene_corruption *c, unsigned long long seed)
+{
+    size_t n = s->mesh.index_count / 3, i;
+    int ok;
+    t->mesh = s->mesh;
+    t->mesh.indices = (unsigned int *)malloc(s->mesh.index_count * sizeof(unsigned int) + 1);
+    t->truth = (unsigned char *)malloc(n + 1);
+    t->part = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
+    t->scored = (unsigned char *)malloc(n + 1);
+    t->from = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
+    ok = t->from != NULL && t->mesh.indices != NULL && t->truth != NULL && t->part != NULL && t->scored != NULL;
+    if (ok) {
+        memcpy(t->mesh.indices, s->mesh.indices, s->mesh.index_count * sizeof(unsigned int));
+        memcpy(t->truth, s->truth, n);
+        for (i = 0; i < n; ++i)
+            t->from[i] = (unsigned int)i;
+        switch (c->kind) {
+        case SCENE_KEEP:
+            break;
+        case SCENE_SHUFFLE:
+            ok = gen_shuffle(&t->mesh, t->truth, t->from, seed);
+            break;
+        case SCENE_INSIDE_OUT:
+            gen_reverse_all(&t->mesh, t->truth);
+            break;
+        case SCENE_PATCHES:
+            if (s->patch != NULL)
+                gen_reverse_patches(&t->mesh, t->truth, s->patch, c->p, seed);
+            break;
+        case SCENE_RANDOM:
+            gen_reverse_random(&t->mesh, t->truth, c->p, seed);
+            break;
+        }
+    }
+    for (i = 0; ok && i < n; ++i) {
+        t->part[i] = s->part[t->from[i]];
+        t->scored[i] = (unsigned char)!(c->hides_convention && s->parts[t->part[i]].flat);
+    }
+    if (!ok)
+        scene_trial_free(t);
+    return ok;
 }
 #endif /* SCENES_IMPLEMENTATION */

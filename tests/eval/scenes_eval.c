@@ -69,20 +69,6 @@ static const policy_choice POLICIES[] = {
     {"up", 1, MESHFIX_POLICY_UP},
 };
 
-typedef enum corruption_kind { KEEP, SHUFFLE, INSIDE_OUT, PATCHES, RANDOM } corruption_kind;
-
-typedef struct corruption {
-    const char *name;
-    corruption_kind kind;
-    double p;
-    int hides_convention; /* leaves no trace of which side of a flat sheet was meant */
-} corruption;
-
-static const corruption CORRUPTIONS[] = {
-    {"correct", KEEP, 0, 0},      {"shuffled", SHUFFLE, 0, 0},     {"inside-out", INSIDE_OUT, 0, 1},
-    {"patches", PATCHES, 0.5, 1}, {"random-0.3", RANDOM, 0.3, 0}, {"random-0.5", RANDOM, 0.5, 1},
-};
-
 #define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
 /* ---- command line ---- */
@@ -148,9 +134,9 @@ static int parse(int argc, char **argv, settings *s)
         } else if (strcmp(arg, "--scene") == 0 && scene_find(value) != NULL && s->scene_picks < MAX_PICKS) {
             s->scenes[s->scene_picks++] = value;
         } else if (strcmp(arg, "--corruption") == 0 && s->corruption_picks < MAX_PICKS) {
-            for (k = 0; k < COUNT(CORRUPTIONS) && strcmp(CORRUPTIONS[k].name, value) != 0; ++k)
+            for (k = 0; k < SCENE_CORRUPTION_COUNT && strcmp(SCENE_CORRUPTIONS[k].name, value) != 0; ++k)
                 ;
-            if (k == COUNT(CORRUPTIONS))
+            if (k == SCENE_CORRUPTION_COUNT)
                 return usage();
             s->corruptions[s->corruption_picks++] = value;
         } else if (strcmp(arg, "--seed") == 0) {
@@ -160,67 +146,6 @@ static int parse(int argc, char **argv, settings *s)
         }
     }
     return 1;
-}
-
-/* ---- one corrupted copy of a scene ---- */
-
-typedef struct trial {
-    mio_mesh mesh;        /* positions borrowed from the scene */
-    unsigned char *truth; /* as the corrupted input stands */
-    unsigned int *part;
-    unsigned char *scored; /* 0: undecided, left out of the score */
-} trial;
-
-static void trial_free(trial *t)
-{
-    free(t->mesh.indices);
-    free(t->truth);
-    free(t->part);
-    free(t->scored);
-}
-
-/* Applies corruption c to a copy of the scene. Returns 0 when out of memory. */
-static int trial_make(trial *t, const scene *s, const corruption *c, unsigned long long seed)
-{
-    size_t n = s->mesh.index_count / 3, i;
-    unsigned int *from = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
-    int ok;
-    t->mesh = s->mesh;
-    t->mesh.indices = (unsigned int *)malloc(s->mesh.index_count * sizeof(unsigned int) + 1);
-    t->truth = (unsigned char *)malloc(n + 1);
-    t->part = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
-    t->scored = (unsigned char *)malloc(n + 1);
-    ok = from != NULL && t->mesh.indices != NULL && t->truth != NULL && t->part != NULL && t->scored != NULL;
-    if (ok) {
-        memcpy(t->mesh.indices, s->mesh.indices, s->mesh.index_count * sizeof(unsigned int));
-        memcpy(t->truth, s->truth, n);
-        for (i = 0; i < n; ++i)
-            from[i] = (unsigned int)i;
-        switch (c->kind) {
-        case KEEP:
-            break;
-        case SHUFFLE:
-            ok = gen_shuffle(&t->mesh, t->truth, from, seed);
-            break;
-        case INSIDE_OUT:
-            gen_reverse_all(&t->mesh, t->truth);
-            break;
-        case PATCHES:
-            gen_reverse_patches(&t->mesh, t->truth, s->patch, c->p, seed);
-            break;
-        case RANDOM:
-            gen_reverse_random(&t->mesh, t->truth, c->p, seed);
-            break;
-        }
-    }
-    for (i = 0; ok && i < n; ++i) {
-        t->part[i] = s->part[from[i]];
-        t->scored[i] = (unsigned char)!(c->hides_convention && s->parts[t->part[i]].flat);
-    }
-    free(from);
-    if (!ok)
-        trial_free(t);
-    return ok;
 }
 
 /* ---- scoring ---- */
@@ -251,7 +176,7 @@ static int turned(const unsigned int *in, const unsigned int *out, size_t i)
 
 /* Counts what the repair `out` did to the trial, into `total` and, by
    part, into `parts` (may be NULL). */
-static void score(const trial *t, const unsigned int *out, tally *total, tally *parts)
+static void score(const scene_trial *t, const unsigned int *out, tally *total, tally *parts)
 {
     size_t i, n = t->mesh.index_count / 3;
     for (i = 0; i < n; ++i) {
@@ -285,7 +210,7 @@ static void score(const trial *t, const unsigned int *out, tally *total, tally *
 }
 
 /* Repairs the trial with the chosen policy and scores it. */
-static meshfix_result run(const trial *t, const policy_choice *policy, size_t part_count, tally *total, tally *parts)
+static meshfix_result run(const scene_trial *t, const policy_choice *policy, size_t part_count, tally *total, tally *parts)
 {
     unsigned int *out = (unsigned int *)malloc(t->mesh.index_count * sizeof(unsigned int) + 1);
     meshfix_options options;
@@ -383,7 +308,7 @@ typedef struct totals {
     size_t rows, rows_with_area, correct_inputs, correct_unchanged, failed;
 } totals;
 
-static void add_row(totals *all, const corruption *c, const tally *y)
+static void add_row(totals *all, const scene_corruption *c, const tally *y)
 {
     all->sum.triangles += y->triangles;
     all->sum.scored += y->scored;
@@ -402,7 +327,7 @@ static void add_row(totals *all, const corruption *c, const tally *y)
         all->area_percent_sum += percent(y->area_right, y->area);
         all->rows_with_area++;
     }
-    if (c->kind == KEEP || c->kind == SHUFFLE) {
+    if (c->kind == SCENE_KEEP || c->kind == SCENE_SHUFFLE) {
         all->correct_inputs++;
         all->correct_unchanged += y->flips == 0;
     }
@@ -434,14 +359,14 @@ static void evaluate_scene(const scene_info *info, const scene *sc, const settin
 {
     tally *parts = (tally *)calloc(sc->part_count + 1, sizeof(tally));
     size_t c;
-    for (c = 0; c < COUNT(CORRUPTIONS); ++c) {
-        const corruption *k = &CORRUPTIONS[c];
-        trial t;
+    for (c = 0; c < SCENE_CORRUPTION_COUNT; ++c) {
+        const scene_corruption *k = &SCENE_CORRUPTIONS[c];
+        scene_trial t;
         tally y;
         meshfix_result result;
-        if (!picked(s->corruptions, s->corruption_picks, k->name) || (k->kind == PATCHES && sc->patch == NULL))
+        if (!picked(s->corruptions, s->corruption_picks, k->name) || (k->kind == SCENE_PATCHES && sc->patch == NULL))
             continue;
-        if (parts == NULL || !trial_make(&t, sc, k, s->seed * 1000 + c)) {
+        if (parts == NULL || !scene_trial_make(&t, sc, k, s->seed * 1000 + c)) {
             fprintf(stderr, "%s %s: out of memory\n", info->name, k->name);
             all->failed++;
             continue;
@@ -456,7 +381,7 @@ static void evaluate_scene(const scene_info *info, const scene *sc, const settin
                 print_parts(sc, parts);
             add_row(all, k, &y);
         }
-        trial_free(&t);
+        scene_trial_free(&t);
         fflush(stdout);
     }
     free(parts);

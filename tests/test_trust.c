@@ -1,0 +1,396 @@
+/* Trust: under the default policy a correct mesh comes back unchanged
+   (no evidence, no flip), and open parts, assemblies and cut cavities come
+   out right; the result does not depend on triangle order, nor on how
+   much was reversed where the evidence is clear. Real data first: a CAD
+   assembly from Debian's occt-misc, the models of assimp-testmodels; then
+   the generated scenes of tests/scenes.h, whose every triangle's facing is
+   known. Prints "N passed, N failed". */
+#undef NDEBUG
+#define MESHFIX_IMPLEMENTATION
+#include "../meshfix.h"
+#define MESHIO_IMPLEMENTATION
+#include "../examples/meshio.h"
+#define MESHGEN_IMPLEMENTATION
+#include "../examples/meshgen.h"
+#define SCENES_IMPLEMENTATION
+#include "scenes.h"
+
+#include "check.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The default policy on a mesh; returns the repaired indices (free them). */
+static unsigned int *repair(const mio_mesh *g, const meshfix_options *options, meshfix_report *r)
+{
+    unsigned int *out = (unsigned int *)malloc(g->index_count * sizeof(unsigned int) + 4);
+    CHECK_EQ(meshfix_orient(out, g->indices, g->index_count, g->positions, g->vertex_count, 12, options, r),
+             MESHFIX_OK);
+    return out;
+}
+
+/* Every patch is counted once by what decided it. */
+static void check_counts(const meshfix_report *r)
+{
+    CHECK_EQ(r->patches_by_volume + r->patches_by_parity + r->patches_by_visibility + r->patches_by_normals +
+                 r->patches_kept,
+             r->patches);
+}
+
+/* Indices that differ from the input's. */
+static size_t count_changed(const mio_mesh *g, const unsigned int *out)
+{
+    size_t i, changed = 0;
+    for (i = 0; i < g->index_count; ++i)
+        changed += out[i] != g->indices[i];
+    return changed;
+}
+
+/* ---- the reproductions: open sheets a user tries first ---- */
+
+static void test_quad_and_terrain(void)
+{
+    static const float quad_p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    static const unsigned int quad_i[] = {0, 1, 2, 0, 2, 3};
+    mio_mesh quad, terrain;
+    meshfix_report r;
+    unsigned int *out;
+    size_t v;
+    unsigned long long seed = 4;
+    quad.positions = (float *)quad_p;
+    quad.indices = (unsigned int *)quad_i;
+    quad.vertex_count = 4;
+    quad.index_count = 6;
+    out = repair(&quad, NULL, &r);
+    CHECK_EQ(r.triangles_flipped, 0);
+    CHECK_EQ(count_changed(&quad, out), 0);
+    CHECK_EQ(r.patches_kept, 1);
+    CHECK_EQ(r.rays_cast, 0); /* nothing could turn a consistent sheet over: no ray was needed */
+    free(out);
+    /* a 20 x 20 height field facing up, hills and all */
+    CHECK(gen_grid(&terrain, 20, 20));
+    for (v = 0; v < terrain.vertex_count; ++v)
+        terrain.positions[3 * v + 2] += (float)(0.3 * gen_uniform(&seed));
+    out = repair(&terrain, NULL, &r);
+    CHECK_EQ(r.triangles_flipped, 0);
+    CHECK_EQ(count_changed(&terrain, out), 0);
+    check_counts(&r);
+    free(out);
+    mio_free(&terrain);
+}
+
+/* ---- real files ---- */
+
+static int load(const char *path, mio_mesh *g)
+{
+    char error[256];
+    if (mio_load(path, g, error, sizeof(error)))
+        return 1;
+    printf("    cannot load %s: %s (bash .ci/run installs occt-misc and assimp-testmodels)\n", path, error);
+    failures++;
+    return 0;
+}
+
+/* motor.stl: 13 bodies of a CAD assembly touching each other, every
+   stored normal right; the default policy once turned 5,163 of its
+   13,506 triangles over. */
+static void test_motor(void)
+{
+    mio_mesh g;
+    meshfix_report r;
+    unsigned int *out;
+    if (!load("/usr/share/opencascade/data/stl/motor.stl", &g))
+        return;
+    out = repair(&g, NULL, &r);
+    printf("    motor.stl: %lu triangles, %lu patches, %lu flipped\n", (unsigned long)r.triangles,
+           (unsigned long)r.patches, (unsigned long)r.triangles_flipped);
+    CHECK_EQ(r.triangles_flipped, 0);
+    check_counts(&r);
+    free(out);
+    mio_free(&g);
+}
+
+/* Real models that are consistent as shipped come back unchanged; the
+   closed ones, turned inside out, come back as shipped. */
+static void test_real_models_unchanged(void)
+{
+    static const char *files[] = {"/usr/share/opencascade/data/stl/propeller.stl",
+                                  "/usr/share/opencascade/data/stl/shape.stl",
+                                  "/usr/share/opencascade/data/stl/sh1.stl",
+                                  "/usr/share/assimp/models/OBJ/spider.obj",
+                                  "/usr/share/assimp/models/OBJ/box.obj",
+                                  "/usr/share/assimp/models/PLY/cube.ply",
+                                  "/usr/share/assimp/models/STL/sphereWithHole.stl",
+                                  "/usr/share/assimp/models/OBJ/WusonOBJ.obj"};
+    size_t f, t;
+    for (f = 0; f < sizeof(files) / sizeof(files[0]); ++f) {
+        mio_mesh g;
+        meshfix_report before, r;
+        unsigned int *out, *reversed;
+        if (!load(files[f], &g))
+            continue;
+        CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, &before), MESHFIX_OK);
+        out = repair(&g, NULL, &r);
+        if (before.edges_inconsistent == before.edges_non_manifold && before.patches_inside_out == 0) {
+            if (r.triangles_flipped != 0)
+                printf("    %s: %lu flipped\n", files[f], (unsigned long)r.triangles_flipped);
+            CHECK_EQ(r.triangles_flipped, 0);
+        }
+        if (before.edges_boundary == 0 && before.edges_inconsistent == 0 && before.patches_inside_out == 0) {
+            /* closed: inside out, then repaired, it is the file again */
+            reversed = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+            memcpy(reversed, g.indices, g.index_count * sizeof(unsigned int));
+            for (t = 0; t < g.index_count / 3; ++t) {
+                reversed[3 * t + 1] = g.indices[3 * t + 2];
+                reversed[3 * t + 2] = g.indices[3 * t + 1];
+            }
+            CHECK_EQ(meshfix_orient(reversed, reversed, g.index_count, g.positions, g.vertex_count, 12, NULL, &r),
+                     MESHFIX_OK);
+            CHECK(memcmp(reversed, g.indices, g.index_count * sizeof(unsigned int)) == 0);
+            free(reversed);
+        }
+        free(out);
+        mio_free(&g);
+    }
+}
+
+/* ---- generated scenes: every triangle's facing is known ---- */
+
+/* Repairs a trial; returns the scored triangles facing the intended way
+   afterwards, and the flips. */
+static size_t right_after(const scene_trial *t, const meshfix_options *o, size_t *scored, size_t *flips,
+                          unsigned int **result)
+{
+    meshfix_report r;
+    size_t i, n = t->mesh.index_count / 3, right = 0;
+    unsigned int *out = repair(&t->mesh, o, &r);
+    *scored = 0;
+    for (i = 0; i < n; ++i) {
+        int turned = out[3 * i + 1] != t->mesh.indices[3 * i + 1];
+        if (!t->scored[i])
+            continue;
+        (*scored)++;
+        right += (size_t)((t->truth[i] != 0) != turned);
+    }
+    *flips = r.triangles_flipped;
+    check_counts(&r);
+    if (result != NULL)
+        *result = out;
+    else
+        free(out);
+    return right;
+}
+
+/* Open surfaces whose sides only a convention tells apart: turned over
+   whole they stay so, and half of them reversed at random they come out
+   consistent on a side nothing can prove. */
+static int convention_only(const char *scene_name, const scene_corruption *c)
+{
+    int open = strcmp(scene_name, "terrain") == 0 || strcmp(scene_name, "canyon") == 0;
+    return open && (c->kind == SCENE_INSIDE_OUT || (c->kind == SCENE_RANDOM && c->p >= 0.5));
+}
+
+static void test_scenes(void)
+{
+    size_t i, c;
+    for (i = 0; i < scene_count(); ++i) {
+        const scene_info *info = scene_get(i);
+        scene s;
+        int built = scene_build(&s, info->name, SCENE_SMALL);
+        if (built < 0)
+            continue; /* the spider without assimp-testmodels: test_real_models says so */
+        CHECK(built == 1);
+        if (built != 1)
+            continue;
+        for (c = 0; c < SCENE_CORRUPTION_COUNT; ++c) {
+            const scene_corruption *k = &SCENE_CORRUPTIONS[c];
+            scene_trial t;
+            size_t scored, flips, right;
+            if (k->kind == SCENE_PATCHES && s.patch == NULL)
+                continue;
+            CHECK(scene_trial_make(&t, &s, k, 1000 + c));
+            right = right_after(&t, NULL, &scored, &flips, NULL);
+            if (k->kind == SCENE_KEEP || k->kind == SCENE_SHUFFLE || (convention_only(info->name, k) &&
+                                                                       k->kind == SCENE_INSIDE_OUT)) {
+                if (flips != 0)
+                    printf("    %s, %s: %lu flipped\n", info->name, k->name, (unsigned long)flips);
+                CHECK_EQ(flips, 0); /* no evidence, no flip */
+            } else if (!convention_only(info->name, k)) {
+                if (right != scored)
+                    printf("    %s, %s: %lu of %lu right\n", info->name, k->name, (unsigned long)right,
+                           (unsigned long)scored);
+                CHECK_EQ(right, scored);
+            }
+            scene_trial_free(&t);
+        }
+        scene_free(&s);
+    }
+}
+
+/* The same verdicts, triangle by triangle, for any triangle order, and
+   for any amount of reversal of a cut model with gaps. */
+static void test_order_and_amount(void)
+{
+    static const char *names[] = {"cavity_cut", "glass", "assembly"};
+    size_t i, j, n;
+    for (i = 0; i < sizeof(names) / sizeof(names[0]); ++i) {
+        scene s;
+        scene_trial plain, shuffled;
+        unsigned int *a, *b;
+        size_t scored, flips, right;
+        double p;
+        if (scene_build(&s, names[i], SCENE_SMALL) != 1) {
+            failures++;
+            continue;
+        }
+        n = s.mesh.index_count / 3;
+        CHECK(scene_trial_make(&plain, &s, &SCENE_CORRUPTIONS[4], 7)); /* random-0.3 */
+        CHECK(scene_trial_make(&shuffled, &s, &SCENE_CORRUPTIONS[4], 7));
+        CHECK(gen_shuffle(&shuffled.mesh, shuffled.truth, shuffled.from, 99));
+        right_after(&plain, NULL, &scored, &flips, &a);
+        right_after(&shuffled, NULL, &scored, &flips, &b);
+        /* shuffled.from: the triangle of `plain` each shuffled one came from; corners rotate */
+        for (j = 0; j < n; ++j) {
+            const unsigned int *x = a + 3 * shuffled.from[j], *y = b + 3 * j;
+            int same = (x[0] == y[0] && x[1] == y[1] && x[2] == y[2]) || (x[0] == y[1] && x[1] == y[2] && x[2] == y[0]) ||
+                       (x[0] == y[2] && x[1] == y[0] && x[2] == y[1]);
+            if (!same) {
+                printf("    %s: triangle %lu oriented differently when shuffled\n", names[i], (unsigned long)j);
+                failures++;
+                break;
+            }
+        }
+        free(a);
+        free(b);
+        scene_trial_free(&plain);
+        scene_trial_free(&shuffled);
+        for (p = 0.1; p < 1.0; p += 0.2) {
+            scene_corruption amount = SCENE_CORRUPTIONS[4];
+            amount.p = p;
+            CHECK(scene_trial_make(&plain, &s, &amount, 11));
+            right = right_after(&plain, NULL, &scored, &flips, NULL);
+            if (right != scored)
+                printf("    %s, %.0f%% reversed: %lu of %lu right\n", names[i], 100 * p, (unsigned long)right,
+                       (unsigned long)scored);
+            CHECK_EQ(right, scored);
+            scene_trial_free(&plain);
+        }
+        scene_free(&s);
+    }
+}
+
+/* ---- authored normals ---- */
+
+/* A closed sphere wound inward on purpose (a drum that holds particles)
+   with normals that say so: kept. Half its triangles reversed, with the
+   same normals: restored to them, where the volume alone would turn it
+   outward. */
+static void test_authored_normals(void)
+{
+    mio_mesh g;
+    meshfix_options o;
+    meshfix_report r;
+    float *normals;
+    unsigned int *out, *inward;
+    size_t t, n;
+    CHECK(gen_sphere(&g, 12, 18, 0, 0, 0, 1));
+    n = g.index_count / 3;
+    gen_reverse_all(&g, NULL);
+    inward = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+    memcpy(inward, g.indices, g.index_count * sizeof(unsigned int));
+    normals = (float *)malloc(3 * n * sizeof(float));
+    for (t = 0; t < n; ++t) { /* the inward normal of each triangle as it stands */
+        const float *a = g.positions + 3 * g.indices[3 * t], *b = g.positions + 3 * g.indices[3 * t + 1];
+        const float *c = g.positions + 3 * g.indices[3 * t + 2];
+        normals[3 * t] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+        normals[3 * t + 1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+        normals[3 * t + 2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    }
+    memset(&o, 0, sizeof(o));
+    out = repair(&g, NULL, &r);
+    CHECK_EQ(r.triangles_flipped, n); /* geometry alone: outward */
+    free(out);
+    o.triangle_normals = normals;
+    out = repair(&g, &o, &r);
+    CHECK_EQ(r.triangles_flipped, 0); /* the normals agree with the winding: kept */
+    free(out);
+    gen_reverse_random(&g, NULL, 0.5, 3);
+    out = repair(&g, &o, &r);
+    CHECK(memcmp(out, inward, g.index_count * sizeof(unsigned int)) == 0);
+    CHECK(r.patches_by_normals + r.patches_by_volume == r.patches);
+    free(out);
+    o.policy = MESHFIX_POLICY_NORMALS;
+    out = repair(&g, &o, &r);
+    CHECK(memcmp(out, inward, g.index_count * sizeof(unsigned int)) == 0);
+    CHECK_EQ(r.patches_by_normals, 1);
+    free(out);
+    free(inward);
+    free(normals);
+    mio_free(&g);
+}
+
+/* ---- confidence ---- */
+
+/* min_confidence leaves every verdict below it at the patch's majority
+   side: a doubtful patch is not turned. */
+static void test_min_confidence(void)
+{
+    scene s;
+    scene_trial t;
+    meshfix_options o;
+    meshfix_report r, strict;
+    float confidence[4096];
+    unsigned int *ids, *out;
+    size_t i, n;
+    CHECK(scene_build(&s, "assembly", SCENE_SMALL) == 1);
+    CHECK(scene_trial_make(&t, &s, &SCENE_CORRUPTIONS[5], 5)); /* random-0.5: weak priors */
+    n = t.mesh.index_count / 3;
+    ids = (unsigned int *)malloc(n * sizeof(unsigned int));
+    memset(&o, 0, sizeof(o));
+    o.patch_confidence = confidence;
+    o.patch_confidence_capacity = 4096;
+    o.patch_ids = ids;
+    out = repair(&t.mesh, &o, &r);
+    free(out);
+    CHECK(r.patches <= 4096);
+    o.min_confidence = 0.9f;
+    out = repair(&t.mesh, &o, &strict);
+    CHECK(strict.triangles_flipped <= r.triangles_flipped);
+    CHECK(strict.patches_doubtful >= r.patches_doubtful);
+    /* each patch below 0.9 now faces its own majority side as given */
+    {
+        double *kept = (double *)calloc(r.patches, sizeof(double)), *turned = (double *)calloc(r.patches, sizeof(double));
+        size_t p, wrong = 0;
+        for (i = 0; i < n; ++i) {
+            double a = scene_triangle_area(&t.mesh, i);
+            int flipped = out[3 * i + 1] != t.mesh.indices[3 * i + 1];
+            if (ids[i] < r.patches)
+                *(flipped ? &turned[ids[i]] : &kept[ids[i]]) += a;
+        }
+        for (p = 0; p < r.patches; ++p)
+            wrong += confidence[p] < 0.9f && turned[p] > kept[p];
+        CHECK_EQ(wrong, 0);
+        free(kept);
+        free(turned);
+    }
+    free(out);
+    free(ids);
+    scene_trial_free(&t);
+    scene_free(&s);
+}
+
+static const test_case tests[] = {
+    {"a flat quad and a terrain facing up come back unchanged", test_quad_and_terrain},
+    {"motor.stl (occt-misc, 13 touching bodies): zero flips", test_motor},
+    {"real models consistent as shipped: unchanged; closed ones inside out: restored", test_real_models_unchanged},
+    {"generated scenes: correct unchanged, every clear corruption restored", test_scenes},
+    {"same verdicts for any triangle order and any amount reversed", test_order_and_amount},
+    {"authored normals: an inward drum kept, half reversed restored to them", test_authored_normals},
+    {"min_confidence leaves doubtful patches as their majority faces", test_min_confidence},
+};
+
+int main(void)
+{
+    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), NULL);
+}
