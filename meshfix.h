@@ -407,10 +407,15 @@ MESHFIX_API int meshfix_check(const unsigned int *indices, size_t index_count,
                               const float *vertex_positions, size_t vertex_count,
                               size_t vertex_positions_stride, unsigned int requirements);
 
-/* Scratch bytes that any call on a mesh of these counts needs at most.
-   Returns 0 when the counts are too large (the call would return
-   MESHFIX_ERROR_TOO_LARGE) or index_count is 0 (no scratch needed). */
-MESHFIX_API size_t meshfix_scratch_size(size_t vertex_count, size_t index_count);
+/* Scratch bytes that a call with these options on any mesh of these
+   counts needs at most: the topology (35 bytes per triangle and 4 per
+   vertex) and, for AUTO, OUTWARD and VISIBILITY, the units, trees and
+   rays of the worst mesh of that size (a soup: every triangle its own
+   patch). A call given at least this much in options.scratch allocates
+   nothing. Returns 0 when the counts are too large (the call would return
+   MESHFIX_ERROR_TOO_LARGE) or index_count is 0 (no scratch needed).
+   options can be NULL (the default policy). */
+MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count, const meshfix_options *options);
 
 /* Weld vertices closer than `tolerance` (0: equal positions, -0 == +0).
    remap[v] becomes the lowest-index vertex that v welds to (v itself for
@@ -602,6 +607,27 @@ MESHFIX__PRIVATE void meshfix__release(const meshfix_allocator *a, void *p)
         a->free_fn(p, a->user_data);
     else
         MESHFIX_FREE(p, a->user_data);
+}
+
+/* A bump allocator over one block: the geometric stage takes every array
+   it needs from it and gives nothing back; the whole block goes at the
+   end. The block is the rest of the caller's scratch, or one allocation
+   of the size meshfix__geometry_bytes computes for the same arrays. */
+typedef struct meshfix__arena {
+    unsigned char *base;
+    size_t used, size;
+} meshfix__arena;
+
+MESHFIX__PRIVATE void *meshfix__take(meshfix__arena *a, size_t count, size_t size)
+{
+    size_t offset, used = a->used;
+    int fits = meshfix__add_size(&used, count, size, &offset) && used <= a->size;
+    /* meshfix__geometry_bytes counts what the stage takes: never short */
+    MESHFIX_ASSERT(fits);
+    if (!fits)
+        return NULL;
+    a->used = used;
+    return a->base + offset;
 }
 
 /* ===== >>validate ===== */
@@ -2041,15 +2067,15 @@ MESHFIX__PRIVATE unsigned int meshfix__build_tree(meshfix__builder *k, unsigned 
    counting sort: each unit's slots in triangle order), and the frame.
    Trees come later, per unit, as rays need them. Returns 0 when out of
    memory. */
-MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *m, const meshfix_allocator *a,
+MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *m, meshfix__arena *a,
                                          const unsigned int *triangle_unit, unsigned int unit_count)
 {
     unsigned int t, u, n = 0, sum = 0;
     /* the frame was fitted before (coherence works in it too) */
     b->unit_count = unit_count;
     b->top = MESHFIX__NONE;
-    b->unit_first = (unsigned int *)meshfix__allocate(a, (size_t)unit_count + 1, sizeof(unsigned int));
-    b->unit_root = (unsigned int *)meshfix__allocate(a, unit_count, sizeof(unsigned int));
+    b->unit_first = (unsigned int *)meshfix__take(a, (size_t)unit_count + 1, sizeof(unsigned int));
+    b->unit_root = (unsigned int *)meshfix__take(a, unit_count, sizeof(unsigned int));
     if (b->unit_first == NULL || b->unit_root == NULL)
         return 0;
     MESHFIX_MEMSET(b->unit_first, 0, ((size_t)unit_count + 1) * sizeof(unsigned int));
@@ -2066,11 +2092,11 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
             b->unit_root[u] = MESHFIX__NONE;
     }
     b->count = n;
-    b->order = (unsigned int *)meshfix__allocate(a, n, sizeof(unsigned int));
-    b->corners = (float *)meshfix__allocate(a, 9 * (size_t)n, sizeof(float));
-    b->by_index = (unsigned int *)meshfix__allocate(a, n, sizeof(unsigned int));
-    b->cumulative_area = (double *)meshfix__allocate(a, n, sizeof(double));
-    b->nodes = (meshfix__bvh_node *)meshfix__allocate(a, 2 * ((size_t)n + unit_count) + 1, sizeof(meshfix__bvh_node));
+    b->order = (unsigned int *)meshfix__take(a, n, sizeof(unsigned int));
+    b->corners = (float *)meshfix__take(a, 9 * (size_t)n, sizeof(float));
+    b->by_index = (unsigned int *)meshfix__take(a, n, sizeof(unsigned int));
+    b->cumulative_area = (double *)meshfix__take(a, n, sizeof(double));
+    b->nodes = (meshfix__bvh_node *)meshfix__take(a, 2 * ((size_t)n + unit_count) + 1, sizeof(meshfix__bvh_node));
     if (b->order == NULL || b->by_index == NULL || b->corners == NULL || b->cumulative_area == NULL ||
         b->nodes == NULL)
         return 0;
@@ -2155,18 +2181,6 @@ MESHFIX__PRIVATE unsigned int meshfix__top_tree(meshfix__bvh *b, const meshfix__
         x->first = b->unit_root[ids[i]];
     }
     return b->top;
-}
-
-MESHFIX__PRIVATE void meshfix__free_bvh(meshfix__bvh *b, const meshfix_allocator *a)
-{
-    meshfix__release(a, b->order);
-    meshfix__release(a, b->corners);
-    meshfix__release(a, b->by_index);
-    meshfix__release(a, b->cumulative_area);
-    meshfix__release(a, b->nodes);
-    meshfix__release(a, b->unit_first);
-    meshfix__release(a, b->unit_root);
-    MESHFIX_MEMSET(b, 0, sizeof(*b));
 }
 
 /* A direction component of 0 would make its inverse infinite and a slab
@@ -2466,7 +2480,7 @@ typedef struct meshfix__unit {
 typedef struct meshfix__geometry {
     meshfix__mesh *m;
     const meshfix_options *o;
-    meshfix_allocator allocator;
+    meshfix__arena arena;
     meshfix__bvh bvh;
     unsigned int seed;
     float t_min;
@@ -2880,26 +2894,47 @@ MESHFIX__PRIVATE int meshfix__cells_usable(const double lo[3], const double hi[3
     return 1;
 }
 
-/* Fills the grid: a counting sort of (bucket, segment) for every cell a
-   segment's box touches. Pass 0 counts, pass 1 places. */
+/* The cell of a point; 0 when it is too far out to walk to. */
+MESHFIX__PRIVATE int meshfix__point_cell(const meshfix__grid *grid, const double x[3], double cell[3])
+{
+    int k;
+    for (k = 0; k < 3; ++k) {
+        cell[k] = MESHFIX_FLOOR(x[k] / grid->cell);
+        if (!(cell[k] > -1e12 && cell[k] < 1e12))
+            return 0;
+    }
+    return 1;
+}
+
+/* Fills the grid: a counting sort of (bucket, segment) for the cells of
+   a segment's two ends and middle (at most three entries a segment,
+   however long it is: the search looks for segments running alongside,
+   and those have a point near each of these). Pass 0 counts, pass 1
+   places. */
 MESHFIX__PRIVATE void meshfix__grid_pass(meshfix__grid *grid, const meshfix__segment *segments, unsigned int count,
                                         int place)
 {
     unsigned int i;
+    int j, k;
     for (i = 0; i < count; ++i) {
-        double lo[3], hi[3], x, y, z;
-        meshfix__segment_cells(grid, &segments[i], 0.0, lo, hi);
-        if (!meshfix__cells_usable(lo, hi))
-            continue;
-        for (x = lo[0]; x <= hi[0]; ++x)
-            for (y = lo[1]; y <= hi[1]; ++y)
-                for (z = lo[2]; z <= hi[2]; ++z) {
-                    size_t bucket = meshfix__grid_bucket(grid, x, y, z);
-                    if (place)
-                        grid->items[grid->start[bucket]++] = i;
-                    else
-                        grid->start[bucket + 1]++;
-                }
+        double points[3][3], cells[3][3];
+        for (k = 0; k < 3; ++k) {
+            points[0][k] = segments[i].p[k];
+            points[1][k] = 0.5 * (segments[i].p[k] + segments[i].q[k]);
+            points[2][k] = segments[i].q[k];
+        }
+        for (j = 0; j < 3; ++j) {
+            size_t bucket;
+            if (!meshfix__point_cell(grid, points[j], cells[j]) ||
+                (j > 0 && meshfix__compare_cells(cells[j], cells[j - 1]) == 0) ||
+                (j > 1 && meshfix__compare_cells(cells[j], cells[0]) == 0))
+                continue;
+            bucket = meshfix__grid_bucket(grid, cells[j][0], cells[j][1], cells[j][2]);
+            if (place)
+                grid->items[grid->start[bucket]++] = i;
+            else
+                grid->start[bucket + 1]++;
+        }
     }
 }
 
@@ -2986,32 +3021,37 @@ MESHFIX__PRIVATE unsigned int meshfix__collect_segments(const meshfix__geometry 
     return n;
 }
 
-/* Stage 2: a hash grid of cells at least the search distance and a
-   quarter of the longest edge wide, so no edge's box covers more than
-   5 x 5 x 5 cells. Returns 0 when out of memory. */
+/* Stage 2: a hash grid of cells at least the search distance and the
+   mean edge wide; each segment is entered at most three times (what
+   meshfix__geometry_bytes counts). Returns 0 when out of memory. */
+MESHFIX__PRIVATE size_t meshfix__grid_buckets(size_t segments)
+{
+    size_t buckets = 16;
+    while (buckets < 2 * segments)
+        buckets *= 2;
+    return buckets;
+}
+
 MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix__segment *segments,
                                             unsigned int n, double reach, meshfix__grid *grid)
 {
-    double average = 0, longest_edge = 0;
-    size_t buckets = 16, k;
+    double average = 0;
+    size_t buckets, k;
     unsigned int i;
-    for (i = 0; i < n; ++i) {
+    for (i = 0; i < n; ++i)
         average += segments[i].length;
-        longest_edge = meshfix__maxd(longest_edge, segments[i].length);
-    }
     average /= n;
-    grid->cell = meshfix__maxd(meshfix__maxd(reach, average), longest_edge / 4);
-    while (buckets < 2 * (size_t)n)
-        buckets *= 2;
+    grid->cell = meshfix__maxd(reach, average);
+    buckets = meshfix__grid_buckets(n);
     grid->mask = buckets - 1;
-    grid->start = (unsigned int *)meshfix__allocate(&g->allocator, buckets + 1, sizeof(unsigned int));
+    grid->start = (unsigned int *)meshfix__take(&g->arena, buckets + 1, sizeof(unsigned int));
     if (grid->start == NULL)
         return 0;
     MESHFIX_MEMSET(grid->start, 0, (buckets + 1) * sizeof(unsigned int));
     meshfix__grid_pass(grid, segments, n, 0);
     for (k = 0; k < buckets; ++k)
         grid->start[k + 1] += grid->start[k];
-    grid->items = (unsigned int *)meshfix__allocate(&g->allocator, grid->start[buckets], sizeof(unsigned int));
+    grid->items = (unsigned int *)meshfix__take(&g->arena, grid->start[buckets], sizeof(unsigned int));
     if (grid->items == NULL)
         return 0;
     meshfix__grid_pass(grid, segments, n, 1); /* start[b] now ends bucket b */
@@ -3283,12 +3323,12 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
         rings += (unsigned int)meshfix__is_ring(m->mate[h]);
     }
     largest = meshfix__largest_ring(m);
-    out->segments = (meshfix__segment *)meshfix__allocate(&g->allocator, boundary, sizeof(meshfix__segment));
-    out->pairs = (meshfix__pair *)meshfix__allocate(&g->allocator, (size_t)boundary + rings, sizeof(meshfix__pair));
-    tmp = (meshfix__pair *)meshfix__allocate(&g->allocator, (size_t)boundary + rings, sizeof(meshfix__pair));
-    work = (unsigned int *)meshfix__allocate(&g->allocator, largest, sizeof(unsigned int));
-    members = (unsigned int *)meshfix__allocate(&g->allocator, largest, sizeof(unsigned int));
-    angle = (double *)meshfix__allocate(&g->allocator, largest, sizeof(double));
+    out->segments = (meshfix__segment *)meshfix__take(&g->arena, boundary, sizeof(meshfix__segment));
+    out->pairs = (meshfix__pair *)meshfix__take(&g->arena, (size_t)boundary + rings, sizeof(meshfix__pair));
+    tmp = (meshfix__pair *)meshfix__take(&g->arena, (size_t)boundary + rings, sizeof(meshfix__pair));
+    work = (unsigned int *)meshfix__take(&g->arena, largest, sizeof(unsigned int));
+    members = (unsigned int *)meshfix__take(&g->arena, largest, sizeof(unsigned int));
+    angle = (double *)meshfix__take(&g->arena, largest, sizeof(double));
     if (!out->segments || !out->pairs || !tmp || !work || !members || !angle)
         goto done;
     out->segment_count = meshfix__collect_segments(g, scale, out->segments);
@@ -3302,20 +3342,7 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
     out->pair_count = meshfix__sum_pairs(out->pairs, tmp, out->pair_count);
     ok = 1;
 done:
-    meshfix__release(&g->allocator, tmp);
-    meshfix__release(&g->allocator, work);
-    meshfix__release(&g->allocator, members);
-    meshfix__release(&g->allocator, angle);
-    meshfix__release(&g->allocator, grid.start);
-    meshfix__release(&g->allocator, grid.items);
     return ok;
-}
-
-MESHFIX__PRIVATE void meshfix__free_coherence(meshfix__geometry *g, meshfix__coherence *c)
-{
-    meshfix__release(&g->allocator, c->segments);
-    meshfix__release(&g->allocator, c->pairs);
-    MESHFIX_MEMSET(c, 0, sizeof(*c));
 }
 
 /* ===== >>merge ===== */
@@ -3476,13 +3503,13 @@ MESHFIX__PRIVATE int meshfix__alloc_merge(meshfix__geometry *g, meshfix__merge *
     size_t patches = g->m->patch_count;
     unsigned int p;
     MESHFIX_MEMSET(merge, 0, sizeof(*merge));
-    merge->parent = (unsigned int *)meshfix__allocate(&g->allocator, patches, sizeof(unsigned int));
-    merge->parity = (unsigned char *)meshfix__allocate(&g->allocator, patches, 1);
-    merge->turn = (unsigned char *)meshfix__allocate(&g->allocator, patches, 1);
+    merge->parent = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
+    merge->parity = (unsigned char *)meshfix__take(&g->arena, patches, 1);
+    merge->turn = (unsigned char *)meshfix__take(&g->arena, patches, 1);
     if (with_visibility) {
-        merge->front = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
-        merge->back = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
-        merge->area = (double *)meshfix__allocate(&g->allocator, patches, sizeof(double));
+        merge->front = (double *)meshfix__take(&g->arena, patches, sizeof(double));
+        merge->back = (double *)meshfix__take(&g->arena, patches, sizeof(double));
+        merge->area = (double *)meshfix__take(&g->arena, patches, sizeof(double));
         if (!merge->front || !merge->back || !merge->area)
             return 0;
     }
@@ -3493,16 +3520,6 @@ MESHFIX__PRIVATE int meshfix__alloc_merge(meshfix__geometry *g, meshfix__merge *
         merge->parity[p] = merge->turn[p] = 0;
     }
     return 1;
-}
-
-MESHFIX__PRIVATE void meshfix__free_merge(meshfix__geometry *g, meshfix__merge *merge)
-{
-    meshfix__release(&g->allocator, merge->parent);
-    meshfix__release(&g->allocator, merge->parity);
-    meshfix__release(&g->allocator, merge->turn);
-    meshfix__release(&g->allocator, merge->front);
-    meshfix__release(&g->allocator, merge->back);
-    meshfix__release(&g->allocator, merge->area);
 }
 
 /* Units from the merge: numbered by their lowest patch; each patch gets
@@ -4131,19 +4148,6 @@ MESHFIX__PRIVATE void meshfix__apply_units(meshfix__geometry *g)
 
 /* ===== >>geometry ===== */
 
-MESHFIX__PRIVATE void meshfix__free_geometry(meshfix__geometry *g)
-{
-    meshfix__free_bvh(&g->bvh, &g->allocator);
-    meshfix__release(&g->allocator, g->patch_unit);
-    meshfix__release(&g->allocator, g->patch_turn);
-    meshfix__release(&g->allocator, g->triangle_unit);
-    meshfix__release(&g->allocator, g->units);
-    meshfix__release(&g->allocator, g->unit_slots);
-    meshfix__release(&g->allocator, g->unit_ids);
-    meshfix__release(&g->allocator, g->shell_nodes);
-    meshfix__release(&g->allocator, g->shell_ids);
-}
-
 /* Units known: the trees' slots, per unit, and the scratch for trees over
    units. Returns 0 when out of memory. */
 MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
@@ -4153,14 +4157,14 @@ MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
     size_t units = g->unit_count;
     for (t = 0; t < m->triangle_count; ++t)
         g->triangle_unit[t] = meshfix__has_area(m, t) ? g->patch_unit[m->tri_patch[t]] : MESHFIX__NONE;
-    g->units = (meshfix__unit *)meshfix__allocate(&g->allocator, units, sizeof(meshfix__unit));
-    g->unit_slots = (float *)meshfix__allocate(&g->allocator, 9 * units, sizeof(float));
-    g->unit_ids = (unsigned int *)meshfix__allocate(&g->allocator, units, sizeof(unsigned int));
-    g->shell_nodes = (meshfix__bvh_node *)meshfix__allocate(&g->allocator, 2 * units, sizeof(meshfix__bvh_node));
-    g->shell_ids = (unsigned int *)meshfix__allocate(&g->allocator, units, sizeof(unsigned int));
+    g->units = (meshfix__unit *)meshfix__take(&g->arena, units, sizeof(meshfix__unit));
+    g->unit_slots = (float *)meshfix__take(&g->arena, 9 * units, sizeof(float));
+    g->unit_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
+    g->shell_nodes = (meshfix__bvh_node *)meshfix__take(&g->arena, 2 * units, sizeof(meshfix__bvh_node));
+    g->shell_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
     if (!g->units || !g->unit_slots || !g->unit_ids || !g->shell_nodes || !g->shell_ids)
         return 0;
-    if (!meshfix__prepare_bvh(&g->bvh, m, &g->allocator, g->triangle_unit, g->unit_count))
+    if (!meshfix__prepare_bvh(&g->bvh, m, &g->arena, g->triangle_unit, g->unit_count))
         return 0;
     meshfix__cumulate_areas(g);
     return 1;
@@ -4194,7 +4198,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     meshfix__number_units(g, &merge);
     if (!meshfix__prepare_units(g))
         goto done;
-    net = (int *)meshfix__allocate(&g->allocator, g->unit_count, sizeof(int));
+    net = (int *)meshfix__take(&g->arena, g->unit_count, sizeof(int));
     if (net == NULL)
         goto done;
     MESHFIX_MEMSET(net, 0, g->unit_count * sizeof(int));
@@ -4230,9 +4234,6 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     }
     ok = 1;
 done:
-    meshfix__release(&g->allocator, net);
-    meshfix__free_coherence(g, &coherence);
-    meshfix__free_merge(g, &merge);
     return ok;
 }
 
@@ -4351,7 +4352,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
     meshfix__number_units(g, NULL);
     if (!meshfix__prepare_units(g) || !meshfix__alloc_merge(g, &merge, 1))
         goto done;
-    samples = (unsigned int *)meshfix__allocate(&g->allocator, m->patch_count, sizeof(unsigned int));
+    samples = (unsigned int *)meshfix__take(&g->arena, m->patch_count, sizeof(unsigned int));
     if (samples == NULL)
         goto done;
     MESHFIX_MEMSET(samples, 0, m->patch_count * sizeof(unsigned int));
@@ -4389,39 +4390,90 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
     }
     ok = 1;
 done:
-    meshfix__release(&g->allocator, samples);
-    meshfix__free_coherence(g, &coherence);
-    meshfix__free_merge(g, &merge);
     return ok;
 }
 
+/* What the geometric stage needs, counted from the mesh (or, for
+   meshfix_scratch_size, the most any mesh of that size could need). */
+typedef struct meshfix__geometry_counts {
+    size_t triangles, patches, boundary, rings, largest_ring; /* boundary and ring half-edges */
+} meshfix__geometry_counts;
+
+MESHFIX__PRIVATE void meshfix__count_geometry(const meshfix__mesh *m, meshfix__geometry_counts *c)
+{
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
+    c->triangles = m->triangle_count;
+    c->patches = m->patch_count;
+    c->boundary = c->rings = 0;
+    for (h = 0; h < half_edges; ++h) {
+        c->boundary += m->mate[h] == MESHFIX__NONE;
+        c->rings += (size_t)meshfix__is_ring(m->mate[h]);
+    }
+    c->largest_ring = meshfix__largest_ring(m);
+}
+
+/* The bytes of every array the geometric stage takes from its arena, in
+   the order it takes them (each aligned to 16); 0 when that overflows. */
+MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *c, int policy)
+{
+    size_t total = 0, at, n = c->triangles, p = c->patches, b = c->boundary, pairs = c->boundary + c->rings;
+    size_t l = c->largest_ring, vis = policy == MESHFIX_POLICY_VISIBILITY ? p : 0;
+    int ok = /* verdicts, units of patches and triangles */
+        meshfix__add_size(&total, p, sizeof(float), &at) && meshfix__add_size(&total, p, 1, &at) &&
+        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, 1, &at) &&
+        meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
+        /* coherence: segments, pairs and their sort, a ring's radial order, the grid (three
+           entries a segment at most) */
+        meshfix__add_size(&total, b, sizeof(meshfix__segment), &at) &&
+        meshfix__add_size(&total, pairs, sizeof(meshfix__pair), &at) &&
+        meshfix__add_size(&total, pairs, sizeof(meshfix__pair), &at) &&
+        meshfix__add_size(&total, l, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, l, sizeof(unsigned int), &at) && meshfix__add_size(&total, l, sizeof(double), &at) &&
+        meshfix__add_size(&total, meshfix__grid_buckets(b) + 1, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, b, 3 * sizeof(unsigned int), &at) &&
+        /* the merge */
+        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, 1, &at) &&
+        meshfix__add_size(&total, p, 1, &at) && meshfix__add_size(&total, vis, 3 * sizeof(double), &at) &&
+        /* units, the tree over shells, the nets of rings */
+        meshfix__add_size(&total, p, sizeof(meshfix__unit), &at) &&
+        meshfix__add_size(&total, p, 9 * sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, p, 2 * sizeof(meshfix__bvh_node), &at) &&
+        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(int), &at) &&
+        /* the trees and VISIBILITY's samples */
+        meshfix__add_size(&total, p + 1, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, n, 9 * sizeof(float), &at) && meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, n, sizeof(double), &at) &&
+        meshfix__add_size(&total, 2 * (n + p) + 1, sizeof(meshfix__bvh_node), &at) &&
+        meshfix__add_size(&total, vis, sizeof(unsigned int), &at);
+    return ok ? total : 0;
+}
+
 /* Decides the patches of the policies that need rays (OUTWARD, AUTO,
-   VISIBILITY); the others decide patch by patch when they are oriented.
-   Returns 0 when out of memory. */
-MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, const meshfix_allocator *allocator,
-                                                meshfix_report *r)
+   VISIBILITY) with the arrays of `arena`; the others decide patch by
+   patch when they are oriented. Returns 0 when out of memory. */
+MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, meshfix__arena *arena, meshfix_report *r)
 {
     meshfix__geometry g;
-    int policy = m->policy, ok;
+    int policy = m->policy;
     MESHFIX_MEMSET(&g, 0, sizeof(g));
     g.m = m;
     g.o = m->options;
-    g.allocator = *allocator;
+    g.arena = *arena;
     g.seed = m->options->seed != 0 ? m->options->seed : 0x5EEDu;
     g.sigma = m->options->evidence_sigma > 0 ? (double)m->options->evidence_sigma : 3.0;
-    g.patch_unit = (unsigned int *)meshfix__allocate(allocator, m->patch_count, sizeof(unsigned int));
-    g.patch_turn = (unsigned char *)meshfix__allocate(allocator, m->patch_count, 1);
-    g.triangle_unit = (unsigned int *)meshfix__allocate(allocator, m->triangle_count, sizeof(unsigned int));
-    if (!g.patch_unit || !g.patch_turn || !g.triangle_unit) {
-        meshfix__free_geometry(&g);
+    m->confidence = (float *)meshfix__take(&g.arena, m->patch_count, sizeof(float));
+    m->patch_kind = (unsigned char *)meshfix__take(&g.arena, m->patch_count, 1);
+    g.patch_unit = (unsigned int *)meshfix__take(&g.arena, m->patch_count, sizeof(unsigned int));
+    g.patch_turn = (unsigned char *)meshfix__take(&g.arena, m->patch_count, 1);
+    g.triangle_unit = (unsigned int *)meshfix__take(&g.arena, m->triangle_count, sizeof(unsigned int));
+    if (!m->confidence || !m->patch_kind || !g.patch_unit || !g.patch_turn || !g.triangle_unit)
         return 0;
-    }
     meshfix__fit_frame(&g.bvh, m);
     g.t_min = (float)(1e-5 * g.bvh.diagonal);
-    ok = policy == MESHFIX_POLICY_VISIBILITY ? meshfix__decide_by_visibility(&g, r) : meshfix__decide_by_shells(&g, r);
-    meshfix__free_geometry(&g);
-    return ok;
+    return policy == MESHFIX_POLICY_VISIBILITY ? meshfix__decide_by_visibility(&g, r) : meshfix__decide_by_shells(&g, r);
 }
+
 /* ===== >>report ===== */
 
 MESHFIX__PRIVATE unsigned int meshfix__flip_of(const meshfix__mesh *m, unsigned int t)
@@ -4704,9 +4756,11 @@ MESHFIX__PRIVATE int meshfix__needs_geometry(const meshfix__mesh *m, int policy)
    inconsistent edges, Euler characteristic) are skipped when `full` is 0:
    the caller asked for neither a report nor components. */
 MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, const meshfix_options *o, int full,
-                                                 const meshfix_allocator *allocator, meshfix_report *r)
+                                                 const meshfix_allocator *allocator, meshfix__arena *rest,
+                                                 meshfix_report *r)
 {
     meshfix__edge_counts edges;
+    unsigned char *own = NULL;
     size_t c, n;
 
     r->triangles_degenerate = meshfix__mark_degenerate(m);
@@ -4729,22 +4783,37 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
     n = o->components != NULL ? o->components_capacity : 0;
     n = m->component_count < n ? m->component_count : n;
     if (meshfix__needs_geometry(m, policy)) {
-        /* the only stage that allocates: units, trees and rays */
-        int ok;
-        m->confidence = (float *)meshfix__allocate(allocator, m->patch_count, sizeof(float));
-        m->patch_kind = (unsigned char *)meshfix__allocate(allocator, m->patch_count, 1);
-        ok = m->confidence != NULL && m->patch_kind != NULL && meshfix__decide_by_geometry(m, allocator, r);
-        if (!ok) {
-            meshfix__release(allocator, m->confidence);
-            meshfix__release(allocator, m->patch_kind);
+        /* units, trees and rays: the rest of the caller's scratch, or a
+           second allocation */
+        meshfix__geometry_counts counts;
+        meshfix__arena arena;
+        size_t bytes;
+        meshfix__count_geometry(m, &counts);
+        bytes = meshfix__geometry_bytes(&counts, policy);
+        if (bytes == 0)
+            return MESHFIX_ERROR_TOO_LARGE;
+        arena.used = 0;
+        arena.size = bytes;
+        if (rest->base != NULL) {
+            if (rest->size - rest->used < bytes)
+                return MESHFIX_ERROR_SCRATCH_TOO_SMALL;
+            arena.base = rest->base + rest->used;
+            own = NULL;
+        } else {
+            own = (unsigned char *)meshfix__allocate(allocator, bytes, 1);
+            if (own == NULL)
+                return MESHFIX_ERROR_OUT_OF_MEMORY;
+            arena.base = own;
+        }
+        if (!meshfix__decide_by_geometry(m, &arena, r)) {
+            meshfix__release(allocator, own);
             return MESHFIX_ERROR_OUT_OF_MEMORY;
         }
     }
     if (n != 0)
         MESHFIX_MEMSET(o->components, 0, n * sizeof(meshfix_component));
     meshfix__orient_patches(m, policy, o, r);
-    meshfix__release(allocator, m->confidence);
-    meshfix__release(allocator, m->patch_kind);
+    meshfix__release(allocator, own);
     m->confidence = NULL;
     m->patch_kind = NULL;
 #ifdef MESHFIX_DEBUG
@@ -4837,8 +4906,9 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
     meshfix__mesh m;
     meshfix_report r;
     meshfix_options options;
+    meshfix__arena rest;
     unsigned char *raw, *block;
-    size_t vertex_range = 0;
+    size_t vertex_range = 0, topology;
     meshfix_result result;
 
     /* a copy: NULL means all zero, and the report may share memory with
@@ -4881,9 +4951,17 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const un
     }
     block = raw + (16u - (size_t)raw % 16u) % 16u;
     meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range, &options, policy);
+    /* what the caller's scratch holds beyond the topology: the geometry's */
+    MESHFIX_MEMSET(&rest, 0, sizeof(rest));
+    topology = (size_t)(block - raw) + ((plan.total - 16 + 15) & ~(size_t)15);
+    if (options.scratch != NULL) {
+        rest.base = raw + topology;
+        rest.size = options.scratch_size > topology ? options.scratch_size - topology : 0;
+    }
 
     /* 2-5. edges, patches, components, policy */
-    result = meshfix__analyze(&m, policy, &options, report != NULL || options.components != NULL, &allocator, &r);
+    result = meshfix__analyze(&m, policy, &options, report != NULL || options.components != NULL, &allocator, &rest,
+                              &r);
 
     /* 6. write: nothing can fail from here on */
     if (result == MESHFIX_OK) {
@@ -4957,13 +5035,23 @@ MESHFIX_API int meshfix_check(const unsigned int *indices, size_t index_count, c
     return 1;
 }
 
-MESHFIX_API size_t meshfix_scratch_size(size_t vertex_count, size_t index_count)
+MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count, const meshfix_options *options)
 {
     meshfix__plan plan;
-    if (index_count == 0 || index_count > MESHFIX__MAX_INDEX_COUNT ||
-        !meshfix__make_plan(&plan, vertex_count, (index_count + 2) / 3))
+    meshfix__geometry_counts worst;
+    size_t geometry, triangles = index_count / 3;
+    int policy = options != NULL ? (int)options->policy : (int)MESHFIX_POLICY_AUTO;
+    if (index_count == 0 || index_count > MESHFIX__MAX_INDEX_COUNT || !meshfix__make_plan(&plan, vertex_count, triangles))
         return 0;
-    return plan.total;
+    if (policy != MESHFIX_POLICY_AUTO && policy != MESHFIX_POLICY_OUTWARD && policy != MESHFIX_POLICY_VISIBILITY)
+        return plan.total;
+    /* the worst mesh: a soup, every triangle its own patch, every edge a boundary or in a ring */
+    worst.triangles = worst.patches = triangles;
+    worst.boundary = worst.rings = worst.largest_ring = 3 * triangles;
+    geometry = meshfix__geometry_bytes(&worst, policy);
+    if (geometry == 0 || plan.total + 16 + geometry < geometry)
+        return 0;
+    return plan.total + 16 + geometry;
 }
 
 MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex_positions, size_t vertex_count,

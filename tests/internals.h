@@ -20,17 +20,27 @@ static unsigned char *bind_mesh(meshfix__mesh *m, const meshfix_options *o, cons
     return block;
 }
 
-/* The ray tree over every triangle with an area, as one unit; returns its
-   root. `units` holds a word per triangle. */
-static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, const meshfix_allocator *a,
+/* An arena of its own for the geometric internals (free arena->base). */
+static void make_arena(meshfix__arena *arena, size_t bytes)
+{
+    arena->base = (unsigned char *)malloc(bytes);
+    arena->used = 0;
+    arena->size = bytes;
+}
+
+/* The ray tree over every triangle with an area, as one unit, in an
+   arena of its own (free bvh_arena->base after); returns its root.
+   `units` holds a word per triangle. */
+static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena,
                                unsigned int *units)
 {
     unsigned int t;
     for (t = 0; t < m->triangle_count; ++t)
         units[t] = meshfix__has_area(m, t) ? 0 : MESHFIX__NONE;
     memset(bvh, 0, sizeof(*bvh));
+    make_arena(bvh_arena, 128 * m->triangle_count + 4096);
     meshfix__fit_frame(bvh, m);
-    if (!meshfix__prepare_bvh(bvh, m, a, units, 1))
+    if (!meshfix__prepare_bvh(bvh, m, bvh_arena, units, 1))
         return MESHFIX__NONE;
     return meshfix__unit_tree(bvh, m, 0);
 }

@@ -175,8 +175,8 @@ static void test_matrix_refusals(void)
                        MESHFIX_ERROR_TOO_LARGE);
     }
     if (sizeof(size_t) > 4)
-        CHECK_EQ(meshfix_scratch_size((size_t)1 << 20 << 20, 12), 0);
-    CHECK_EQ(meshfix_scratch_size(4, ((size_t)-1) / 3 * 3), 0);
+        CHECK_EQ(meshfix_scratch_size(12, (size_t)1 << 20 << 20, NULL), 0);
+    CHECK_EQ(meshfix_scratch_size(((size_t)-1) / 3 * 3, 4, NULL), 0);
     /* positions needed */
     {
         guarded g;
@@ -527,7 +527,7 @@ static void test_deep_tree(void)
     mio_mesh g;
     meshfix__mesh m;
     meshfix__bvh bvh;
-    meshfix_allocator allocator;
+    meshfix__arena arena;
     meshfix_options o;
     meshfix_report r;
     unsigned char *block;
@@ -537,10 +537,9 @@ static void test_deep_tree(void)
     int p;
     make_shrinking_planes(&g, 45);
     memset(&o, 0, sizeof(o));
-    memset(&allocator, 0, sizeof(allocator));
     block = bind_mesh(&m, &o, g.indices, g.index_count, g.positions, g.vertex_count);
     units = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
-    root = whole_tree(&bvh, &m, &allocator, units);
+    root = whole_tree(&bvh, &m, &arena, units);
     CHECK(root != MESHFIX__NONE);
     depth = tree_depth(&bvh, root);
     printf("    %u triangles shrinking toward the origin: tree depth %lu, traversal stack %d\n", bvh.count,
@@ -561,7 +560,7 @@ static void test_deep_tree(void)
             q.skip = MESHFIX__NONE;
             meshfix__trace(&bvh, root, &ray, &q);
         }
-    meshfix__free_bvh(&bvh, &allocator);
+    free(arena.base);
     for (p = 0; p < POLICIES; ++p) {
         o = policy_options(p);
         CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
@@ -610,7 +609,7 @@ static void test_report_shares_options(void)
         meshfix_report report;
     } shared;
     unsigned int out[12];
-    size_t size = meshfix_scratch_size(4, 12);
+    size_t size = meshfix_scratch_size(12, 4, NULL);
     void *scratch = malloc(size);
     memset(&shared, 0, sizeof(shared));
     shared.options.scratch = scratch;
@@ -655,7 +654,7 @@ static void test_sizes_that_wrap(void)
         expect_refusal("index 0xFFFFFFFE of 0xFFFFFFFF vertices", far_index, 3, NULL, 0xFFFFFFFFu, 12,
                        MESHFIX_ERROR_TOO_LARGE);
         expect_refusal("3 * 2^28 indices", tetra_i, (size_t)3 << 28, tetra_p, 4, 12, MESHFIX_ERROR_TOO_LARGE);
-        CHECK_EQ(meshfix_scratch_size(0xFFFFFFFFu, 3), 0);
+        CHECK_EQ(meshfix_scratch_size(3, 0xFFFFFFFFu, NULL), 0);
     }
     /* the last vertex's 12 bytes past the end of the address space */
     expect_refusal("stride * (vertex_count - 1) + 12 overflows", tetra_i, 12, tetra_p, 4,

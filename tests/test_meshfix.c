@@ -507,8 +507,8 @@ static void test_errors_change_nothing(void)
     CHECK(!meshfix_check(tetra_indices, 12, NULL, 4, 0, MESHFIX_REQUIRE_OUTWARD));
     CHECK(strcmp(meshfix_result_string(MESHFIX_ERROR_OUT_OF_MEMORY), "out of memory") == 0);
     CHECK(meshfix_result_string((meshfix_result)1234) != NULL);
-    CHECK_EQ(meshfix_scratch_size(4, 0), 0);
-    CHECK_EQ(meshfix_scratch_size(4, (size_t)0x7FFFFFFF + 1), 0);
+    CHECK_EQ(meshfix_scratch_size(0, 4, NULL), 0);
+    CHECK_EQ(meshfix_scratch_size((size_t)0x7FFFFFFF + 1, 4, NULL), 0);
 }
 
 /* ---- allocators ---- */
@@ -563,7 +563,7 @@ static void test_allocators(void)
     CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r), MESHFIX_OK);
     CHECK_EQ(a.allocations, 1);
     CHECK_EQ(a.frees, 1);
-    CHECK(a.peak <= meshfix_scratch_size(g.vertex_count, g.index_count));
+    CHECK(a.peak <= meshfix_scratch_size(g.index_count, g.vertex_count, &o));
     CHECK(a.peak <= 64 * g.index_count / 3 + 4 * g.vertex_count + 256);
     /* every allocation the call makes fails in turn: out of memory, nothing leaked or written */
     memset(&a, 0, sizeof(a));
@@ -577,20 +577,40 @@ static void test_allocators(void)
     CHECK(memcmp(out, before, g.index_count * sizeof(unsigned int)) == 0);
     CHECK_EQ(meshfix_inspect_ex(g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
              MESHFIX_ERROR_OUT_OF_MEMORY);
-    /* caller scratch: zero allocations; one byte short: refused */
-    need = meshfix_scratch_size(g.vertex_count, g.index_count);
-    scratch = malloc(need);
-    memset(&a, 0, sizeof(a));
-    o.scratch = scratch;
-    o.scratch_size = need;
-    CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r), MESHFIX_OK);
-    CHECK_EQ(a.allocations, 0);
-    CHECK_EQ(r.edges_inconsistent, 0);
-    o.scratch = (char *)scratch + 1; /* misaligned on purpose */
-    o.scratch_size = need - 1;
-    CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
-             MESHFIX_ERROR_SCRATCH_TOO_SMALL);
-    free(scratch);
+    /* caller scratch: zero allocations under every policy; one byte short
+       of what the mesh needs: refused */
+    {
+        static const meshfix_policy every[] = {MESHFIX_POLICY_AUTO, MESHFIX_POLICY_SEED, MESHFIX_POLICY_MAJORITY,
+                                               MESHFIX_POLICY_OUTWARD, MESHFIX_POLICY_VISIBILITY, MESHFIX_POLICY_UP};
+        mio_mesh two;
+        size_t k;
+        CHECK(gen_sphere(&two, 8, 10, 4, 0, 0, 1));
+        gen_append(&two, &g); /* two shells: the geometric stage runs */
+        gen_flip_random(&two, 0.3, 6, NULL);
+        for (k = 0; k < sizeof(every) / sizeof(every[0]); ++k) {
+            o.policy = every[k];
+            need = meshfix_scratch_size(two.index_count, two.vertex_count, &o);
+            scratch = malloc(need);
+            memset(&a, 0, sizeof(a));
+            o.scratch = scratch;
+            o.scratch_size = need;
+            CHECK_EQ(meshfix_orient(two.indices, two.indices, two.index_count, two.positions, two.vertex_count, 12, &o,
+                                    &r), MESHFIX_OK);
+            CHECK_EQ(a.allocations, 0);
+            CHECK_EQ(r.edges_inconsistent, 0);
+            free(scratch);
+        }
+        o.scratch = NULL;
+        o.policy = MESHFIX_POLICY_MAJORITY; /* the topology alone: its exact need */
+        need = meshfix_scratch_size(g.index_count, g.vertex_count, &o);
+        scratch = malloc(need);
+        o.scratch = (char *)scratch + 1; /* misaligned on purpose */
+        o.scratch_size = need - 1;
+        CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
+                 MESHFIX_ERROR_SCRATCH_TOO_SMALL);
+        free(scratch);
+        mio_free(&two);
+    }
     free(before);
     free(out);
     mio_free(&g);

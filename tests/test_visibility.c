@@ -688,17 +688,16 @@ static void test_watertight_rays(void)
     mio_mesh g;
     meshfix__mesh m;
     meshfix__bvh bvh;
-    meshfix_allocator allocator;
+    meshfix__arena arena;
     meshfix_options o;
     unsigned char *block;
     unsigned int *units, root;
     size_t v, t, bad = 0, rays = 0;
     CHECK(gen_sphere(&g, 18, 26, 0.1f, -0.2f, 0.3f, 1.5f));
     memset(&o, 0, sizeof(o));
-    memset(&allocator, 0, sizeof(allocator));
     block = bind_mesh(&m, &o, g.indices, g.index_count, g.positions, g.vertex_count);
     units = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
-    root = whole_tree(&bvh, &m, &allocator, units);
+    root = whole_tree(&bvh, &m, &arena, units);
     CHECK(root != MESHFIX__NONE);
     /* rays in the tree's frame, where its corners are */
     for (v = 0; v < g.vertex_count + g.index_count; ++v) {
@@ -742,7 +741,7 @@ static void test_watertight_rays(void)
     }
     printf("    %lu rays through vertices and edges: %lu wrong\n", (unsigned long)rays, (unsigned long)bad);
     CHECK_EQ(bad, 0);
-    meshfix__free_bvh(&bvh, &allocator);
+    free(arena.base);
     free(units);
     free(block);
     mio_free(&g);

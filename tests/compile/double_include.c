@@ -6,5 +6,5 @@
 
 int main(void)
 {
-    return meshfix_scratch_size(3, 3) == 0;
+    return meshfix_scratch_size(3, 3, 0) == 0;
 }

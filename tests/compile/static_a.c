@@ -7,5 +7,5 @@ int static_b_call(void);
 
 int main(void)
 {
-    return meshfix_scratch_size(3, 3) == 0 || static_b_call() != 0;
+    return meshfix_scratch_size(3, 3, 0) == 0 || static_b_call() != 0;
 }
