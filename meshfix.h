@@ -502,6 +502,21 @@ MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 #define MESHFIX_TRACE(arguments)
 #endif
 
+/* SIMD where the compiler targets it; MESHFIX_NO_SIMD forces the scalar
+   path (the same results, bit for bit). */
+#if !defined(MESHFIX_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#include <emmintrin.h>
+#define MESHFIX__SSE 1
+#define MESHFIX__NEON 0
+#elif !defined(MESHFIX_NO_SIMD) && (defined(__ARM_NEON) || defined(__ARM_NEON__))
+#include <arm_neon.h>
+#define MESHFIX__SSE 0
+#define MESHFIX__NEON 1
+#else
+#define MESHFIX__SSE 0
+#define MESHFIX__NEON 0
+#endif
+
 #if defined(__GNUC__) || defined(__clang__)
 #define MESHFIX__PRIVATE static __attribute__((unused))
 #else
@@ -1718,16 +1733,23 @@ MESHFIX__PRIVATE int meshfix__is_closed_orientable(const meshfix__mesh *m, unsig
    shared edges and vertices, so crossing counts of closed surfaces are
    exact parities. */
 
-typedef struct meshfix__bvh_node {
-    float bounds[6];    /* low x y z, high x y z */
-    unsigned int first; /* inner: left child (right = left + 1); leaf: first slot; unit: its tree's root */
-    unsigned int count; /* inner: 0; leaf: triangles; a unit's tree: MESHFIX__UNIT_NODE | unit */
-} meshfix__bvh_node;
-
+/* A node has up to four children, their boxes side by side, so that one
+   ray tests all four in a few SIMD instructions. A child is a node, a leaf
+   (a run of slots), a unit's tree (in the tree over units) or empty (its
+   box inside out: no ray enters it). Nodes lie depth first. */
+#define MESHFIX__WIDTH 4
 #define MESHFIX__UNIT_NODE 0x80000000u
+#define MESHFIX__EMPTY 0xFFFFFFFFu
+
+typedef struct meshfix__node {
+    float low[3][MESHFIX__WIDTH], high[3][MESHFIX__WIDTH]; /* per axis, per child */
+    unsigned int child[MESHFIX__WIDTH]; /* a node, a leaf's first slot, or a unit's root node */
+    unsigned int count[MESHFIX__WIDTH]; /* 0: a node; 1..: a leaf of that many slots;
+                                           MESHFIX__UNIT_NODE | unit; MESHFIX__EMPTY */
+} meshfix__node;
 
 typedef struct meshfix__bvh {
-    meshfix__bvh_node *nodes;  /* a unit's tree at 2 * its first slot; the top tree after 2 * count */
+    meshfix__node *nodes;      /* a unit's tree from its first slot on; the top tree after the last slot */
     unsigned int *order;       /* per slot: its triangle; the slots of a unit lie together */
     unsigned int *by_index;    /* the same triangles, each unit's in index order: the trees reorder
                                   `order` by float arithmetic, which builds round differently, and
@@ -1862,15 +1884,17 @@ MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__bvh *b, const meshfix
 
 #define MESHFIX__BINS 12
 #define MESHFIX__LEAF 4
-/* The depth of a tree is bounded, so the traversal's fixed stack always
-   holds it: SAH splits down to MESHFIX__BVH_SAH_LEVELS levels (SAH can cut
-   one triangle off a range at each level: triangles shrinking toward a
-   point make a chain as deep as they are many), then halving, which adds
-   at most 31 levels for 2^31 triangles. Two trees (over units, then in a
-   unit) lie on a path. A traversal keeps at most one pending node per
-   level, plus the two it just pushed. */
+/* The depth of a tree is bounded, so the fixed stacks always hold it: SAH
+   splits down to MESHFIX__BVH_SAH_LEVELS halvings (SAH can cut one
+   triangle off a range at each: triangles shrinking toward a point make a
+   chain as deep as they are many), then halving by count, which adds at
+   most 31 for 2^31 triangles: under MESHFIX__BVH_LEVELS in all, and a
+   node is at least one halving below its parent. Two trees (over units,
+   then in a unit) lie on a ray's path, and a node leaves at most three
+   children pending. */
 #define MESHFIX__BVH_SAH_LEVELS 28
-#define MESHFIX__BVH_STACK 128
+#define MESHFIX__BVH_LEVELS 60
+#define MESHFIX__BVH_STACK (3 * 2 * MESHFIX__BVH_LEVELS + 8)
 
 /* The bin of a centroid, clamped before the conversion. */
 MESHFIX__PRIVATE unsigned int meshfix__bin(double centroid, double low, double scale)
@@ -1890,7 +1914,7 @@ MESHFIX__PRIVATE unsigned int meshfix__bin(double centroid, double low, double s
 typedef struct meshfix__builder {
     float *slots;
     unsigned int *ids;
-    meshfix__bvh_node *nodes;
+    meshfix__node *nodes;
     unsigned int next_node;
     unsigned int leaf;     /* most primitives in a leaf */
 } meshfix__builder;
@@ -2022,43 +2046,105 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__builder *k, unsigned int f
     return half;
 }
 
-MESHFIX__PRIVATE void meshfix__set_node(meshfix__bvh_node *n, unsigned int first, const meshfix__range *r)
+MESHFIX__PRIVATE void meshfix__empty_node(meshfix__node *n)
 {
-    MESHFIX_MEMCPY(n->bounds, r->box, sizeof(n->bounds));
-    n->first = first;
-    n->count = r->count;
+    int c, k;
+    for (c = 0; c < MESHFIX__WIDTH; ++c) {
+        for (k = 0; k < 3; ++k)
+            n->low[k][c] = 1.0f, n->high[k][c] = -1.0f;
+        n->child[c] = MESHFIX__NONE;
+        n->count[c] = MESHFIX__EMPTY;
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__set_child(meshfix__node *n, int c, unsigned int child, unsigned int count,
+                                        const float box[6])
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        n->low[k][c] = box[k], n->high[k][c] = box[3 + k];
+    n->child[c] = child;
+    n->count[c] = count;
+}
+
+/* A range of slots that becomes a node: where it starts, how many
+   halvings it lies below the root, what the build knows of it, and the
+   parent's child entry that will point at it. */
+typedef struct meshfix__pending {
+    unsigned int first, level, parent;
+    int slot;
+    meshfix__range range;
+} meshfix__pending;
+
+/* Splits a node's range into up to four children: the part with the
+   largest box is halved (binned SAH) until there are four, or none can be
+   halved (leaves). Returns how many. */
+MESHFIX__PRIVATE int meshfix__four_parts(meshfix__builder *k, const meshfix__pending *p, meshfix__pending parts[4],
+                                        int leaf[4])
+{
+    int n = 1, i, best;
+    parts[0] = *p;
+    leaf[0] = p->range.count <= k->leaf;
+    while (n < MESHFIX__WIDTH) {
+        float largest = -1.0f;
+        meshfix__range left, right;
+        unsigned int split;
+        for (i = 0, best = -1; i < n; ++i) {
+            float area = meshfix__box_area(parts[i].range.box, parts[i].range.box + 3);
+            if (!leaf[i] && area > largest)
+                best = i, largest = area;
+        }
+        if (best < 0)
+            break;
+        split = meshfix__split(k, parts[best].first, &parts[best].range, parts[best].level < MESHFIX__BVH_SAH_LEVELS,
+                               &left, &right);
+        if (split == 0 || split == parts[best].range.count) {
+            leaf[best] = 1; /* cannot be halved: a leaf as it is */
+            continue;
+        }
+        parts[n].first = parts[best].first + split;
+        parts[n].level = ++parts[best].level;
+        parts[n].range = right;
+        parts[best].range = left;
+        leaf[n] = right.count <= k->leaf;
+        leaf[best] = left.count <= k->leaf;
+        n++;
+    }
+    return n;
 }
 
 /* Builds a tree over slots [first, first + count) into nodes from
-   k->next_node on; returns its root. Deterministic: no randomness, splits
-   depend only on the slots and their order. At most 2 * count - 1 nodes. */
+   k->next_node on, depth first (a node's first child's subtree follows
+   it); returns its root. Deterministic: no randomness, splits depend only
+   on the slots and their order. At most `count` nodes: each has two
+   children or more, but a root over a single leaf. */
 MESHFIX__PRIVATE unsigned int meshfix__build_tree(meshfix__builder *k, unsigned int first, unsigned int count)
 {
-    unsigned int stack[MESHFIX__BVH_STACK], level[MESHFIX__BVH_STACK], depth = 0, root = k->next_node;
-    meshfix__range ranges[MESHFIX__BVH_STACK], whole;
-    meshfix__fit_range(k, first, count, &whole);
-    meshfix__set_node(&k->nodes[k->next_node++], first, &whole);
-    stack[depth] = root;
-    level[depth] = 0;
-    ranges[depth++] = whole;
+    meshfix__pending stack[3 * MESHFIX__BVH_LEVELS + 4], parts[MESHFIX__WIDTH];
+    unsigned int depth = 1, root = k->next_node;
+    int leaf[MESHFIX__WIDTH], n, c;
+    stack[0].first = first;
+    stack[0].level = 0;
+    stack[0].parent = MESHFIX__NONE;
+    stack[0].slot = 0;
+    meshfix__fit_range(k, first, count, &stack[0].range);
     while (depth > 0) {
-        meshfix__range r = ranges[--depth], left, right;
-        meshfix__bvh_node *node = &k->nodes[stack[depth]];
-        unsigned int start = node->first, split, below = level[depth] + 1;
-        split = meshfix__split(k, start, &r, level[depth] < MESHFIX__BVH_SAH_LEVELS, &left, &right);
-        if (split == 0 || split == r.count)
-            continue;
-        node->first = k->next_node;
-        node->count = 0;
-        meshfix__set_node(&k->nodes[k->next_node], start, &left);
-        meshfix__set_node(&k->nodes[k->next_node + 1], start + split, &right);
-        stack[depth] = k->next_node;
-        level[depth] = below;
-        ranges[depth++] = left;
-        stack[depth] = k->next_node + 1;
-        level[depth] = below;
-        ranges[depth++] = right;
-        k->next_node += 2;
+        meshfix__pending p = stack[--depth];
+        unsigned int index = k->next_node++;
+        meshfix__node *node = &k->nodes[index];
+        if (p.parent != MESHFIX__NONE)
+            k->nodes[p.parent].child[p.slot] = index;
+        n = meshfix__four_parts(k, &p, parts, leaf);
+        meshfix__empty_node(node);
+        for (c = n; c-- > 0;) { /* pushed last to first: the first child is built next */
+            meshfix__set_child(node, c, parts[c].first, leaf[c] ? parts[c].range.count : 0u, parts[c].range.box);
+            if (leaf[c])
+                continue;
+            parts[c].parent = index;
+            parts[c].slot = c;
+            MESHFIX_ASSERT(depth < sizeof(stack) / sizeof(stack[0]));
+            stack[depth++] = parts[c];
+        }
     }
     return root;
 }
@@ -2096,7 +2182,7 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
     b->corners = (float *)meshfix__take(a, 9 * (size_t)n, sizeof(float));
     b->by_index = (unsigned int *)meshfix__take(a, n, sizeof(unsigned int));
     b->cumulative_area = (double *)meshfix__take(a, n, sizeof(double));
-    b->nodes = (meshfix__bvh_node *)meshfix__take(a, 2 * ((size_t)n + unit_count) + 1, sizeof(meshfix__bvh_node));
+    b->nodes = (meshfix__node *)meshfix__take(a, (size_t)n + unit_count + 1, sizeof(meshfix__node));
     if (b->order == NULL || b->by_index == NULL || b->corners == NULL || b->cumulative_area == NULL ||
         b->nodes == NULL)
         return 0;
@@ -2134,7 +2220,7 @@ MESHFIX__PRIVATE unsigned int meshfix__unit_tree(meshfix__bvh *b, const meshfix_
     k.slots = b->corners;
     k.ids = b->order;
     k.nodes = b->nodes;
-    k.next_node = 2 * first;
+    k.next_node = first; /* at most end - first nodes: its own range */
     k.leaf = MESHFIX__LEAF;
     b->unit_root[u] = meshfix__build_tree(&k, first, end - first);
     for (i = first; i < end; ++i)
@@ -2145,11 +2231,26 @@ MESHFIX__PRIVATE unsigned int meshfix__unit_tree(meshfix__bvh *b, const meshfix_
 /* The tree over all units' trees (each unit's tree built first); its
    leaves are unit nodes. `slots` and `ids` are scratch for one slot and
    id per unit. */
+/* The box around a node's children. */
+MESHFIX__PRIVATE void meshfix__node_box(const meshfix__node *n, float box[6])
+{
+    int c, k;
+    meshfix__empty_box(box);
+    for (c = 0; c < MESHFIX__WIDTH; ++c) {
+        if (n->count[c] == MESHFIX__EMPTY)
+            continue;
+        for (k = 0; k < 3; ++k) {
+            box[k] = n->low[k][c] < box[k] ? n->low[k][c] : box[k];
+            box[3 + k] = n->high[k][c] > box[3 + k] ? n->high[k][c] : box[3 + k];
+        }
+    }
+}
+
 MESHFIX__PRIVATE unsigned int meshfix__top_tree(meshfix__bvh *b, const meshfix__mesh *m, float *slots,
                                                unsigned int *ids)
 {
     meshfix__builder k;
-    unsigned int u, n = 0, i, node;
+    unsigned int u, n = 0, node;
     int c;
     if (b->top != MESHFIX__NONE)
         return b->top;
@@ -2158,7 +2259,7 @@ MESHFIX__PRIVATE unsigned int meshfix__top_tree(meshfix__bvh *b, const meshfix__
         float *slot = slots + 9 * (size_t)n;
         if (root == MESHFIX__NONE)
             continue;
-        MESHFIX_MEMCPY(slot, b->nodes[root].bounds, 6 * sizeof(float));
+        meshfix__node_box(&b->nodes[root], slot);
         for (c = 0; c < 3; ++c)
             slot[MESHFIX__SLOT_CENTROID + c] = 0.5f * (slot[c] + slot[3 + c]);
         ids[n++] = u;
@@ -2168,18 +2269,19 @@ MESHFIX__PRIVATE unsigned int meshfix__top_tree(meshfix__bvh *b, const meshfix__
     k.slots = slots;
     k.ids = ids;
     k.nodes = b->nodes;
-    k.next_node = 2 * b->count;
+    k.next_node = b->count;
     k.leaf = 1;
     b->top = meshfix__build_tree(&k, 0, n);
-    /* each leaf holds one unit: it becomes that unit's node */
-    for (node = b->top; node < k.next_node; ++node) {
-        meshfix__bvh_node *x = &b->nodes[node];
-        if (x->count == 0)
-            continue;
-        i = x->first;
-        x->count = MESHFIX__UNIT_NODE | ids[i];
-        x->first = b->unit_root[ids[i]];
-    }
+    /* each leaf holds one unit: it becomes that unit's tree */
+    for (node = b->top; node < k.next_node; ++node)
+        for (c = 0; c < MESHFIX__WIDTH; ++c) {
+            meshfix__node *x = &b->nodes[node];
+            if (x->count[c] == 0 || x->count[c] == MESHFIX__EMPTY)
+                continue;
+            u = ids[x->child[c]];
+            x->count[c] = MESHFIX__UNIT_NODE | u;
+            x->child[c] = b->unit_root[u];
+        }
     return b->top;
 }
 
@@ -2263,28 +2365,79 @@ MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c
     return 1;
 }
 
-/* Slab test; returns the entry distance, or a negative value for a miss.
-   A ray aimed at a vertex on the box's face has an empty interval by
-   rounding alone: the far side is widened by a few ulps (Ize, "Robust BVH
-   Ray Traversal", JCGT 2013). */
-MESHFIX__PRIVATE float meshfix__hit_box(const meshfix__ray *r, const meshfix__bvh_node *n, float t_max)
+/* Slab test of a node's four boxes: a bit per box the ray enters within
+   (t_min, t_max), and the entry distances. A ray aimed at a vertex on a
+   box's face has an empty interval by rounding alone: the far side is
+   widened by a few ulps (Ize, "Robust BVH Ray Traversal", JCGT 2013).
+   SSE2 or NEON where the compiler targets them (MESHFIX_NO_SIMD turns them
+   off): the same float operations in the same order as the scalar loop,
+   so every path gives the same bits, and no value is ever NaN. */
+#if MESHFIX__SSE
+MESHFIX__PRIVATE unsigned int meshfix__hit_boxes(const meshfix__ray *r, const meshfix__node *n, float t_max,
+                                                float entry[MESHFIX__WIDTH])
 {
-    const float *bounds = n->bounds;
-    float tx0 = (bounds[r->near_side[0]] - r->origin[0]) * r->inverse[0];
-    float tx1 = (bounds[3 - r->near_side[0]] - r->origin[0]) * r->inverse[0] * 1.0000004f;
-    float ty0 = (bounds[r->near_side[1]] - r->origin[1]) * r->inverse[1];
-    float ty1 = (bounds[5 - r->near_side[1]] - r->origin[1]) * r->inverse[1] * 1.0000004f;
-    float tz0 = (bounds[r->near_side[2]] - r->origin[2]) * r->inverse[2];
-    float tz1 = (bounds[7 - r->near_side[2]] - r->origin[2]) * r->inverse[2] * 1.0000004f;
-    float t0 = r->t_min, t1 = t_max;
-    t0 = tx0 > t0 ? tx0 : t0;
-    t0 = ty0 > t0 ? ty0 : t0;
-    t0 = tz0 > t0 ? tz0 : t0;
-    t1 = tx1 < t1 ? tx1 : t1;
-    t1 = ty1 < t1 ? ty1 : t1;
-    t1 = tz1 < t1 ? tz1 : t1;
-    return t0 <= t1 ? t0 : -1.0f;
+    __m128 t0 = _mm_set1_ps(r->t_min), t1 = _mm_set1_ps(t_max), widen = _mm_set1_ps(1.0000004f);
+    int k;
+    for (k = 0; k < 3; ++k) {
+        const float *near_plane = r->inverse[k] < 0 ? n->high[k] : n->low[k];
+        const float *far_plane = r->inverse[k] < 0 ? n->low[k] : n->high[k];
+        __m128 origin = _mm_set1_ps(r->origin[k]), inverse = _mm_set1_ps(r->inverse[k]);
+        __m128 tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(near_plane), origin), inverse);
+        __m128 tf = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(far_plane), origin), inverse), widen);
+        t0 = _mm_max_ps(tn, t0);
+        t1 = _mm_min_ps(tf, t1);
+    }
+    _mm_storeu_ps(entry, t0);
+    return (unsigned int)_mm_movemask_ps(_mm_cmple_ps(t0, t1));
 }
+#elif MESHFIX__NEON
+MESHFIX__PRIVATE unsigned int meshfix__hit_boxes(const meshfix__ray *r, const meshfix__node *n, float t_max,
+                                                float entry[MESHFIX__WIDTH])
+{
+    static const unsigned int bits[4] = {1, 2, 4, 8};
+    float32x4_t t0 = vdupq_n_f32(r->t_min), t1 = vdupq_n_f32(t_max), widen = vdupq_n_f32(1.0000004f);
+    uint32x4_t inside;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        const float *near_plane = r->inverse[k] < 0 ? n->high[k] : n->low[k];
+        const float *far_plane = r->inverse[k] < 0 ? n->low[k] : n->high[k];
+        float32x4_t origin = vdupq_n_f32(r->origin[k]), inverse = vdupq_n_f32(r->inverse[k]);
+        float32x4_t tn = vmulq_f32(vsubq_f32(vld1q_f32(near_plane), origin), inverse);
+        float32x4_t tf = vmulq_f32(vmulq_f32(vsubq_f32(vld1q_f32(far_plane), origin), inverse), widen);
+        t0 = vmaxq_f32(tn, t0);
+        t1 = vminq_f32(tf, t1);
+    }
+    vst1q_f32(entry, t0);
+    inside = vandq_u32(vcleq_f32(t0, t1), vld1q_u32(bits));
+    return vgetq_lane_u32(inside, 0) | vgetq_lane_u32(inside, 1) | vgetq_lane_u32(inside, 2) |
+           vgetq_lane_u32(inside, 3);
+}
+#else
+MESHFIX__PRIVATE unsigned int meshfix__hit_boxes(const meshfix__ray *r, const meshfix__node *n, float t_max,
+                                                float entry[MESHFIX__WIDTH])
+{
+    float t0[MESHFIX__WIDTH], t1[MESHFIX__WIDTH];
+    unsigned int mask = 0;
+    int c, k;
+    for (c = 0; c < MESHFIX__WIDTH; ++c)
+        t0[c] = r->t_min, t1[c] = t_max;
+    for (k = 0; k < 3; ++k) {
+        const float *near_plane = r->inverse[k] < 0 ? n->high[k] : n->low[k];
+        const float *far_plane = r->inverse[k] < 0 ? n->low[k] : n->high[k];
+        for (c = 0; c < MESHFIX__WIDTH; ++c) {
+            float tn = (near_plane[c] - r->origin[k]) * r->inverse[k];
+            float tf = (far_plane[c] - r->origin[k]) * r->inverse[k] * 1.0000004f;
+            t0[c] = tn > t0[c] ? tn : t0[c];
+            t1[c] = tf < t1[c] ? tf : t1[c];
+        }
+    }
+    for (c = 0; c < MESHFIX__WIDTH; ++c) {
+        entry[c] = t0[c];
+        mask |= (unsigned int)(t0[c] <= t1[c]) << c;
+    }
+    return mask;
+}
+#endif
 
 /* What a traversal looks for: the first hit, the closest, or the number of
    surfaces crossed (a parity). */
@@ -2337,9 +2490,37 @@ MESHFIX__PRIVATE void meshfix__count_crossing(meshfix__crossings *c, float t, in
    square of its size. */
 #define MESHFIX__RAY_WORK 1024
 
-/* Traces r through the tree below `root` (a unit's tree, or the top
-   tree). Returns 1 when it hit something (COUNT_HITS: crossed an odd or
-   even number > 0 of surfaces). */
+/* The triangles of a leaf against the ray; returns 1 when an ANY_HIT
+   query is answered. */
+MESHFIX__PRIVATE int meshfix__hit_leaf(const meshfix__bvh *b, unsigned int first, unsigned int count,
+                                      const meshfix__ray *r, meshfix__query *q, float *best,
+                                      meshfix__crossings *crossings)
+{
+    unsigned int i;
+    for (i = first; i < first + count; ++i) {
+        unsigned int id = b->order[i];
+        float t;
+        int zeros;
+        if (id == q->skip || !meshfix__hit_triangle(r, b->corners + 9 * (size_t)i, &t, &zeros) || t >= *best)
+            continue;
+        if (q->mode == MESHFIX__COUNT_HITS) {
+            meshfix__count_crossing(crossings, t, zeros);
+            continue;
+        }
+        q->triangle = id;
+        q->t = t;
+        q->hits = 1;
+        if (q->mode == MESHFIX__ANY_HIT)
+            return 1;
+        *best = t;
+    }
+    return 0;
+}
+
+/* Traces r through the tree below node `root` (a unit's tree, or the top
+   tree). Leaves are tested as their node is visited; the children nodes
+   the ray enters are pushed farthest first, so the nearest comes next.
+   Returns 1 when it hit something (COUNT_HITS: crossed a surface). */
 MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, unsigned int root, const meshfix__ray *r, meshfix__query *q)
 {
     unsigned int stack[MESHFIX__BVH_STACK], depth = 0, work = 0;
@@ -2348,55 +2529,39 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, unsigned int root, co
     crossings.halves = crossings.vertex_count = 0;
     q->hits = 0;
     q->triangle = MESHFIX__NONE;
-    if (root == MESHFIX__NONE || meshfix__hit_box(r, &b->nodes[root], best) < 0)
+    if (root == MESHFIX__NONE)
         return 0;
     stack[depth++] = root;
     while (depth > 0) {
-        const meshfix__bvh_node *n = &b->nodes[stack[--depth]];
-        unsigned int i;
+        const meshfix__node *n = &b->nodes[stack[--depth]];
+        float entry[MESHFIX__WIDTH], near_t[MESHFIX__WIDTH];
+        unsigned int mask, c, pending = 0, next[MESHFIX__WIDTH];
         if (++work > MESHFIX__RAY_WORK) {
             if (q->mode == MESHFIX__ANY_HIT)
                 q->hits = 1;
             break;
         }
-        if (n->count & MESHFIX__UNIT_NODE) {
-            stack[depth++] = n->first; /* its box is its tree's root box: tested already */
-            continue;
-        }
-        if (n->count == 0) {
-            /* both children tested here; the nearer one is visited first */
-            float near_t = meshfix__hit_box(r, &b->nodes[n->first], best);
-            float far_t = meshfix__hit_box(r, &b->nodes[n->first + 1], best);
-            unsigned int near_node = n->first, far_node = n->first + 1;
-            if (far_t >= 0 && (near_t < 0 || far_t < near_t)) {
-                float x = near_t;
-                near_t = far_t, far_t = x;
-                near_node = n->first + 1, far_node = n->first;
-            }
-            MESHFIX_ASSERT(depth + 2 <= MESHFIX__BVH_STACK);
-            if (far_t >= 0)
-                stack[depth++] = far_node;
-            if (near_t >= 0)
-                stack[depth++] = near_node;
-            continue;
-        }
-        for (i = n->first; i < n->first + n->count; ++i) {
-            unsigned int id = b->order[i];
-            float t;
-            int zeros;
-            if (id == q->skip || !meshfix__hit_triangle(r, b->corners + 9 * (size_t)i, &t, &zeros) || t >= best)
+        mask = meshfix__hit_boxes(r, n, best, entry);
+        for (c = 0; c < MESHFIX__WIDTH; ++c) {
+            unsigned int count = n->count[c], i;
+            if (!(mask & (1u << c)) || count == MESHFIX__EMPTY)
                 continue;
-            if (q->mode == MESHFIX__COUNT_HITS) {
-                meshfix__count_crossing(&crossings, t, zeros);
+            if (count != 0 && !(count & MESHFIX__UNIT_NODE)) {
+                if (meshfix__hit_leaf(b, n->child[c], count, r, q, &best, &crossings))
+                    return 1;
                 continue;
             }
-            q->triangle = id;
-            q->t = t;
-            q->hits = 1;
-            if (q->mode == MESHFIX__ANY_HIT)
-                return 1;
-            best = t;
+            /* keep the nodes sorted nearest first (ties: child order) */
+            for (i = pending++; i > 0 && near_t[i - 1] > entry[c]; --i) {
+                near_t[i] = near_t[i - 1];
+                next[i] = next[i - 1];
+            }
+            near_t[i] = entry[c];
+            next[i] = n->child[c];
         }
+        MESHFIX_ASSERT(depth + pending <= MESHFIX__BVH_STACK);
+        while (pending > 0)
+            stack[depth++] = next[--pending];
     }
     if (q->mode == MESHFIX__COUNT_HITS)
         q->hits = (crossings.halves + 1) / 2;
@@ -2414,27 +2579,32 @@ MESHFIX__PRIVATE int meshfix__box_overlaps(const float a[6], const float b[6])
 
 /* The ids whose box contains `box` (or, with `overlapping`, meets it),
    from a tree over boxes built with leaf size 1: a walk that enters only
-   nodes that do. Returns how many were written to out (at most
+   children that do. Returns how many were written to out (at most
    `capacity`; the rest are dropped). */
-MESHFIX__PRIVATE unsigned int meshfix__boxes_around(const meshfix__bvh_node *nodes, unsigned int root,
+MESHFIX__PRIVATE unsigned int meshfix__boxes_around(const meshfix__node *nodes, unsigned int root,
                                                    const unsigned int *ids, const float box[6], int overlapping,
                                                    unsigned int *out, unsigned int capacity)
 {
-    unsigned int stack[MESHFIX__BVH_STACK], depth = 0, found = 0, k;
+    unsigned int stack[MESHFIX__BVH_STACK], depth = 0, found = 0;
+    int c, k;
     if (root == MESHFIX__NONE)
         return 0;
     stack[depth++] = root;
     while (depth > 0) {
-        const meshfix__bvh_node *n = &nodes[stack[--depth]];
-        if (!(overlapping ? meshfix__box_overlaps(n->bounds, box) : meshfix__box_contains(n->bounds, box)))
-            continue;
-        if (n->count != 0) {
-            if (found < capacity)
-                out[found++] = ids[n->first];
-            continue;
+        const meshfix__node *n = &nodes[stack[--depth]];
+        for (c = 0; c < MESHFIX__WIDTH; ++c) {
+            float child[6];
+            if (n->count[c] == MESHFIX__EMPTY)
+                continue;
+            for (k = 0; k < 3; ++k)
+                child[k] = n->low[k][c], child[3 + k] = n->high[k][c];
+            if (!(overlapping ? meshfix__box_overlaps(child, box) : meshfix__box_contains(child, box)))
+                continue;
+            if (n->count[c] == 0)
+                stack[depth++] = n->child[c];
+            else if (found < capacity)
+                out[found++] = ids[n->child[c]];
         }
-        for (k = 0; k < 2; ++k)
-            stack[depth++] = n->first + k;
     }
     return found;
 }
@@ -2493,7 +2663,7 @@ typedef struct meshfix__geometry {
     meshfix__unit *units;
     float *unit_slots;          /* scratch for trees over units: 9 floats per unit */
     unsigned int *unit_ids;
-    meshfix__bvh_node *shell_nodes; /* a tree over the boxes of closed and nearly closed units */
+    meshfix__node *shell_nodes; /* a tree over the boxes of closed and nearly closed units */
     unsigned int *shell_ids;
     unsigned int shell_root;
     unsigned int reversed_scene; /* the closed parts were all inside out: so was the file */
@@ -4160,7 +4330,7 @@ MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
     g->units = (meshfix__unit *)meshfix__take(&g->arena, units, sizeof(meshfix__unit));
     g->unit_slots = (float *)meshfix__take(&g->arena, 9 * units, sizeof(float));
     g->unit_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
-    g->shell_nodes = (meshfix__bvh_node *)meshfix__take(&g->arena, 2 * units, sizeof(meshfix__bvh_node));
+    g->shell_nodes = (meshfix__node *)meshfix__take(&g->arena, units, sizeof(meshfix__node));
     g->shell_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
     if (!g->units || !g->unit_slots || !g->unit_ids || !g->shell_nodes || !g->shell_ids)
         return 0;
@@ -4437,14 +4607,14 @@ MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *
         /* units, the tree over shells, the nets of rings */
         meshfix__add_size(&total, p, sizeof(meshfix__unit), &at) &&
         meshfix__add_size(&total, p, 9 * sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, p, 2 * sizeof(meshfix__bvh_node), &at) &&
+        meshfix__add_size(&total, p, sizeof(meshfix__node), &at) &&
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(int), &at) &&
         /* the trees and VISIBILITY's samples */
         meshfix__add_size(&total, p + 1, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, n, 9 * sizeof(float), &at) && meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, n, sizeof(double), &at) &&
-        meshfix__add_size(&total, 2 * (n + p) + 1, sizeof(meshfix__bvh_node), &at) &&
+        meshfix__add_size(&total, n + p + 1, sizeof(meshfix__node), &at) &&
         meshfix__add_size(&total, vis, sizeof(unsigned int), &at);
     return ok ? total : 0;
 }
