@@ -560,9 +560,11 @@ typedef struct meshfix__plan {
     size_t total;
 } meshfix__plan;
 
-MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t element_size, size_t *offset)
+/* Arrays start at multiples of `align` bytes (a power of two, 16 or more). */
+MESHFIX__PRIVATE int meshfix__add_aligned(size_t *total, size_t count, size_t element_size, size_t align,
+                                         size_t *offset)
 {
-    size_t bytes, aligned = (*total + 15u) & ~(size_t)15u;
+    size_t bytes, aligned = (*total + align - 1) & ~(align - 1);
     if (aligned < *total || (element_size != 0 && count > ((size_t)-1) / element_size))
         return 0;
     bytes = count * element_size;
@@ -571,6 +573,11 @@ MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t eleme
     *offset = aligned;
     *total = aligned + bytes;
     return 1;
+}
+
+MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t element_size, size_t *offset)
+{
+    return meshfix__add_aligned(total, count, element_size, 16, offset);
 }
 
 /* One block holds every array. `work` holds the edge buckets, then the
@@ -628,21 +635,31 @@ MESHFIX__PRIVATE void meshfix__release(const meshfix_allocator *a, void *p)
    it needs from it and gives nothing back; the whole block goes at the
    end. The block is the rest of the caller's scratch, or one allocation
    of the size meshfix__geometry_bytes computes for the same arrays. */
+#define MESHFIX__ARENA_SLACK 64
 typedef struct meshfix__arena {
     unsigned char *base;
     size_t used, size;
 } meshfix__arena;
 
-MESHFIX__PRIVATE void *meshfix__take(meshfix__arena *a, size_t count, size_t size)
+/* Tree nodes start on a cache line: meshfix__geometry_bytes adds what
+   that can cost. */
+#define MESHFIX__NODE_ALIGN 64
+
+MESHFIX__PRIVATE void *meshfix__take_aligned(meshfix__arena *a, size_t count, size_t size, size_t align)
 {
     size_t offset, used = a->used;
-    int fits = meshfix__add_size(&used, count, size, &offset) && used <= a->size;
+    int fits = meshfix__add_aligned(&used, count, size, align, &offset) && used <= a->size;
     /* meshfix__geometry_bytes counts what the stage takes: never short */
     MESHFIX_ASSERT(fits);
     if (!fits)
         return NULL;
     a->used = used;
     return a->base + offset;
+}
+
+MESHFIX__PRIVATE void *meshfix__take(meshfix__arena *a, size_t count, size_t size)
+{
+    return meshfix__take_aligned(a, count, size, 16);
 }
 
 /* ===== >>validate ===== */
@@ -1734,18 +1751,19 @@ MESHFIX__PRIVATE int meshfix__is_closed_orientable(const meshfix__mesh *m, unsig
    exact parities. */
 
 /* A node has up to four children, their boxes side by side, so that one
-   ray tests all four in a few SIMD instructions. A child is a node, a leaf
-   (a run of slots), a unit's tree (in the tree over units) or empty (its
-   box inside out: no ray enters it). Nodes lie depth first. */
+   ray tests all four in a few SIMD instructions. A child is a node (in
+   the tree over units, the root of a unit's tree), a leaf (a run of at
+   most MESHFIX__LEAF slots) or empty (its box inside out: no ray enters
+   it). Nodes lie depth first. */
 #define MESHFIX__WIDTH 4
-#define MESHFIX__UNIT_NODE 0x80000000u
-#define MESHFIX__EMPTY 0xFFFFFFFFu
+#define MESHFIX__EMPTY 0xFFu
 
+/* 128 bytes, two cache lines when the array is aligned to 64 */
 typedef struct meshfix__node {
     float low[3][MESHFIX__WIDTH], high[3][MESHFIX__WIDTH]; /* per axis, per child */
-    unsigned int child[MESHFIX__WIDTH]; /* a node, a leaf's first slot, or a unit's root node */
-    unsigned int count[MESHFIX__WIDTH]; /* 0: a node; 1..: a leaf of that many slots;
-                                           MESHFIX__UNIT_NODE | unit; MESHFIX__EMPTY */
+    unsigned int child[MESHFIX__WIDTH];   /* a node, or a leaf's first slot */
+    unsigned char count[MESHFIX__WIDTH];  /* 0: a node; 1 ..: a leaf of that many slots; EMPTY */
+    unsigned int unused[3];
 } meshfix__node;
 
 typedef struct meshfix__bvh {
@@ -1884,6 +1902,8 @@ MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__bvh *b, const meshfix
 
 #define MESHFIX__BINS 12
 #define MESHFIX__LEAF 4
+/* slots after the last, so that a leaf's four slots can be read at once */
+#define MESHFIX__SLOT_PAD 4
 /* The depth of a tree is bounded, so the fixed stacks always hold it: SAH
    splits down to MESHFIX__BVH_SAH_LEVELS halvings (SAH can cut one
    triangle off a range at each: triangles shrinking toward a point make a
@@ -2064,7 +2084,7 @@ MESHFIX__PRIVATE void meshfix__set_child(meshfix__node *n, int c, unsigned int c
     for (k = 0; k < 3; ++k)
         n->low[k][c] = box[k], n->high[k][c] = box[3 + k];
     n->child[c] = child;
-    n->count[c] = count;
+    n->count[c] = (unsigned char)count;
 }
 
 /* A range of slots that becomes a node: where it starts, how many
@@ -2179,10 +2199,11 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
     }
     b->count = n;
     b->order = (unsigned int *)meshfix__take(a, n, sizeof(unsigned int));
-    b->corners = (float *)meshfix__take(a, 9 * (size_t)n, sizeof(float));
+    b->corners = (float *)meshfix__take(a, 9 * ((size_t)n + MESHFIX__SLOT_PAD), sizeof(float));
     b->by_index = (unsigned int *)meshfix__take(a, n, sizeof(unsigned int));
     b->cumulative_area = (double *)meshfix__take(a, n, sizeof(double));
-    b->nodes = (meshfix__node *)meshfix__take(a, (size_t)n + unit_count + 1, sizeof(meshfix__node));
+    b->nodes = (meshfix__node *)meshfix__take_aligned(a, (size_t)n + unit_count + 1, sizeof(meshfix__node),
+                                                      MESHFIX__NODE_ALIGN);
     if (b->order == NULL || b->by_index == NULL || b->corners == NULL || b->cumulative_area == NULL ||
         b->nodes == NULL)
         return 0;
@@ -2194,6 +2215,7 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
         b->unit_first[u] = b->unit_first[u - 1];
     b->unit_first[0] = 0;
     MESHFIX_MEMCPY(b->by_index, b->order, n * sizeof(unsigned int));
+    MESHFIX_MEMSET(b->corners + 9 * (size_t)n, 0, 9 * MESHFIX__SLOT_PAD * sizeof(float));
     return 1;
 }
 
@@ -2272,15 +2294,14 @@ MESHFIX__PRIVATE unsigned int meshfix__top_tree(meshfix__bvh *b, const meshfix__
     k.next_node = b->count;
     k.leaf = 1;
     b->top = meshfix__build_tree(&k, 0, n);
-    /* each leaf holds one unit: it becomes that unit's tree */
+    /* each leaf holds one unit: it becomes a link to that unit's tree */
     for (node = b->top; node < k.next_node; ++node)
         for (c = 0; c < MESHFIX__WIDTH; ++c) {
             meshfix__node *x = &b->nodes[node];
             if (x->count[c] == 0 || x->count[c] == MESHFIX__EMPTY)
                 continue;
-            u = ids[x->child[c]];
-            x->count[c] = MESHFIX__UNIT_NODE | u;
-            x->child[c] = b->unit_root[u];
+            x->count[c] = 0;
+            x->child[c] = b->unit_root[ids[x->child[c]]];
         }
     return b->top;
 }
@@ -2490,68 +2511,153 @@ MESHFIX__PRIVATE void meshfix__count_crossing(meshfix__crossings *c, float t, in
    square of its size. */
 #define MESHFIX__RAY_WORK 1024
 
-/* The triangles of a leaf against the ray; returns 1 when an ANY_HIT
-   query is answered. */
+/* The lowest set bit of a non-zero mask. */
+MESHFIX__PRIVATE unsigned int meshfix__lowest_bit(unsigned int mask)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return (unsigned int)__builtin_ctz(mask);
+#else
+    unsigned int i = 0;
+    while (!(mask & 1u))
+        mask >>= 1, ++i;
+    return i;
+#endif
+}
+
+/* Up to four consecutive slots against the ray: a bit per slot hit within
+   (t_min, t_max), with its distance and zero count as meshfix__hit_triangle
+   gives them. With SSE2 the four are tested side by side, in the same
+   float operations in the same order, so every bit agrees with the scalar
+   test; a slot with an edge function exactly 0 (a hit on an edge or
+   vertex, or a miss beside one) takes the scalar test and its double
+   fallback. Reads 4 slots and one float (the corners array is padded). */
+#if MESHFIX__SSE
+MESHFIX__PRIVATE unsigned int meshfix__hit_slots(const meshfix__ray *r, const float *corners, unsigned int count,
+                                                float t[4], int zeros[4])
+{
+    __m128 p[3][3], *a = p[0], *b = p[1], *c = p[2], ax, ay, bx, by, cx, cy, u, v, w, det, dist;
+    __m128 zero = _mm_setzero_ps(), sx = _mm_set1_ps(r->shear[0]), sy = _mm_set1_ps(r->shear[1]);
+    __m128 sz = _mm_set1_ps(r->shear[2]);
+    unsigned int mask, edge, i, valid = (1u << count) - 1u;
+    int j, k;
+    for (j = 0; j < 3; ++j) {
+        /* rows: slot i's corner j as x y z (and one float more), turned into columns */
+        __m128 r0 = _mm_loadu_ps(corners + 3 * j), r1 = _mm_loadu_ps(corners + 9 + 3 * j);
+        __m128 r2 = _mm_loadu_ps(corners + 18 + 3 * j), r3 = _mm_loadu_ps(corners + 27 + 3 * j);
+        _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+        p[j][0] = r0, p[j][1] = r1, p[j][2] = r2;
+        for (k = 0; k < 3; ++k)
+            p[j][k] = _mm_sub_ps(p[j][k], _mm_set1_ps(r->origin[k]));
+    }
+    ax = _mm_sub_ps(a[r->kx], _mm_mul_ps(sx, a[r->kz]));
+    ay = _mm_sub_ps(a[r->ky], _mm_mul_ps(sy, a[r->kz]));
+    bx = _mm_sub_ps(b[r->kx], _mm_mul_ps(sx, b[r->kz]));
+    by = _mm_sub_ps(b[r->ky], _mm_mul_ps(sy, b[r->kz]));
+    cx = _mm_sub_ps(c[r->kx], _mm_mul_ps(sx, c[r->kz]));
+    cy = _mm_sub_ps(c[r->ky], _mm_mul_ps(sy, c[r->kz]));
+    u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
+    v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
+    w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
+    edge = (unsigned int)_mm_movemask_ps(
+               _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero))) & valid;
+    /* a hit has no edge function below 0, or none above */
+    mask = ~(unsigned int)_mm_movemask_ps(_mm_and_ps(
+               _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero)),
+               _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero))));
+    det = _mm_add_ps(_mm_add_ps(u, v), w);
+    mask &= ~(unsigned int)_mm_movemask_ps(_mm_cmpeq_ps(det, zero));
+    if ((mask & valid & ~edge) != 0) {
+        __m128 az = _mm_mul_ps(sz, a[r->kz]), bz = _mm_mul_ps(sz, b[r->kz]), cz = _mm_mul_ps(sz, c[r->kz]);
+        __m128 distance = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(v, bz)), _mm_mul_ps(w, cz));
+        /* a lane that fails is not divided by 0: its det is replaced */
+        dist = _mm_div_ps(distance, _mm_or_ps(_mm_and_ps(_mm_cmpneq_ps(det, zero), det),
+                                              _mm_andnot_ps(_mm_cmpneq_ps(det, zero), _mm_set1_ps(1.0f))));
+        mask &= (unsigned int)_mm_movemask_ps(
+            _mm_and_ps(_mm_cmpgt_ps(dist, _mm_set1_ps(r->t_min)), _mm_cmplt_ps(dist, _mm_set1_ps(r->t_max))));
+        _mm_storeu_ps(t, dist);
+    }
+    mask &= valid & ~edge;
+    for (i = 0; i < count; ++i)
+        zeros[i] = 0;
+    for (; edge != 0; edge &= edge - 1) {
+        i = meshfix__lowest_bit(edge);
+        if (meshfix__hit_triangle(r, corners + 9 * i, &t[i], &zeros[i]))
+            mask |= 1u << i;
+    }
+    return mask;
+}
+#else
+MESHFIX__PRIVATE unsigned int meshfix__hit_slots(const meshfix__ray *r, const float *corners, unsigned int count,
+                                                float t[4], int zeros[4])
+{
+    unsigned int i, mask = 0;
+    for (i = 0; i < count; ++i)
+        if (meshfix__hit_triangle(r, corners + 9 * i, &t[i], &zeros[i]))
+            mask |= 1u << i;
+    return mask;
+}
+#endif
+
+/* The triangles of a leaf against the ray, in slot order; returns 1 when
+   an ANY_HIT query is answered. */
 MESHFIX__PRIVATE int meshfix__hit_leaf(const meshfix__bvh *b, unsigned int first, unsigned int count,
                                       const meshfix__ray *r, meshfix__query *q, float *best,
                                       meshfix__crossings *crossings)
 {
-    unsigned int i;
-    for (i = first; i < first + count; ++i) {
-        unsigned int id = b->order[i];
-        float t;
-        int zeros;
-        if (id == q->skip || !meshfix__hit_triangle(r, b->corners + 9 * (size_t)i, &t, &zeros) || t >= *best)
+    float t[4];
+    int zeros[4];
+    unsigned int mask = meshfix__hit_slots(r, b->corners + 9 * (size_t)first, count, t, zeros);
+    for (; mask != 0; mask &= mask - 1) {
+        unsigned int i = meshfix__lowest_bit(mask), id = b->order[first + i];
+        if (id == q->skip || t[i] >= *best)
             continue;
         if (q->mode == MESHFIX__COUNT_HITS) {
-            meshfix__count_crossing(crossings, t, zeros);
+            meshfix__count_crossing(crossings, t[i], zeros[i]);
             continue;
         }
         q->triangle = id;
-        q->t = t;
+        q->t = t[i];
         q->hits = 1;
         if (q->mode == MESHFIX__ANY_HIT)
             return 1;
-        *best = t;
+        *best = t[i];
     }
     return 0;
 }
 
 /* Traces r through the tree below node `root` (a unit's tree, or the top
-   tree). Leaves are tested as their node is visited; the children nodes
-   the ray enters are pushed farthest first, so the nearest comes next.
-   Returns 1 when it hit something (COUNT_HITS: crossed a surface). */
+   tree). Leaves are tested as their node is visited; of the child nodes
+   the ray enters, the nearest is visited next and the others wait on the
+   stack with their entry distance, so that a closest-hit query drops
+   those beyond its best hit unread. Returns 1 when it hit something
+   (COUNT_HITS: crossed a surface). */
 MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, unsigned int root, const meshfix__ray *r, meshfix__query *q)
 {
-    unsigned int stack[MESHFIX__BVH_STACK], depth = 0, work = 0;
-    float best = r->t_max;
+    unsigned int stack[MESHFIX__BVH_STACK], depth = 0, work = 0, node = root;
+    float stack_t[MESHFIX__BVH_STACK], best = r->t_max;
     meshfix__crossings crossings;
     crossings.halves = crossings.vertex_count = 0;
     q->hits = 0;
     q->triangle = MESHFIX__NONE;
-    if (root == MESHFIX__NONE)
-        return 0;
-    stack[depth++] = root;
-    while (depth > 0) {
-        const meshfix__node *n = &b->nodes[stack[--depth]];
+    while (node != MESHFIX__NONE) {
+        const meshfix__node *n = &b->nodes[node];
         float entry[MESHFIX__WIDTH], near_t[MESHFIX__WIDTH];
-        unsigned int mask, c, pending = 0, next[MESHFIX__WIDTH];
+        unsigned int mask, pending = 0, next[MESHFIX__WIDTH];
         if (++work > MESHFIX__RAY_WORK) {
             if (q->mode == MESHFIX__ANY_HIT)
                 q->hits = 1;
             break;
         }
-        mask = meshfix__hit_boxes(r, n, best, entry);
-        for (c = 0; c < MESHFIX__WIDTH; ++c) {
-            unsigned int count = n->count[c], i;
-            if (!(mask & (1u << c)) || count == MESHFIX__EMPTY)
+        for (mask = meshfix__hit_boxes(r, n, best, entry); mask != 0; mask &= mask - 1) {
+            unsigned int c = meshfix__lowest_bit(mask), count = n->count[c], i;
+            if (count == MESHFIX__EMPTY)
                 continue;
-            if (count != 0 && !(count & MESHFIX__UNIT_NODE)) {
+            if (count != 0) {
                 if (meshfix__hit_leaf(b, n->child[c], count, r, q, &best, &crossings))
                     return 1;
                 continue;
             }
-            /* keep the nodes sorted nearest first (ties: child order) */
+            /* nearest first (ties: child order) */
             for (i = pending++; i > 0 && near_t[i - 1] > entry[c]; --i) {
                 near_t[i] = near_t[i - 1];
                 next[i] = next[i - 1];
@@ -2560,8 +2666,19 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, unsigned int root, co
             next[i] = n->child[c];
         }
         MESHFIX_ASSERT(depth + pending <= MESHFIX__BVH_STACK);
-        while (pending > 0)
-            stack[depth++] = next[--pending];
+        while (pending > 1) {
+            --pending;
+            stack_t[depth] = near_t[pending];
+            stack[depth++] = next[pending];
+        }
+        if (pending == 1) {
+            node = next[0];
+            continue;
+        }
+        /* a node the best hit has moved in front of holds nothing nearer */
+        for (node = MESHFIX__NONE; depth > 0 && node == MESHFIX__NONE;)
+            if (!(stack_t[--depth] > best))
+                node = stack[depth];
     }
     if (q->mode == MESHFIX__COUNT_HITS)
         q->hits = (crossings.halves + 1) / 2;
@@ -4330,7 +4447,7 @@ MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
     g->units = (meshfix__unit *)meshfix__take(&g->arena, units, sizeof(meshfix__unit));
     g->unit_slots = (float *)meshfix__take(&g->arena, 9 * units, sizeof(float));
     g->unit_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
-    g->shell_nodes = (meshfix__node *)meshfix__take(&g->arena, units, sizeof(meshfix__node));
+    g->shell_nodes = (meshfix__node *)meshfix__take_aligned(&g->arena, units, sizeof(meshfix__node), MESHFIX__NODE_ALIGN);
     g->shell_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
     if (!g->units || !g->unit_slots || !g->unit_ids || !g->shell_nodes || !g->shell_ids)
         return 0;
@@ -4583,7 +4700,8 @@ MESHFIX__PRIVATE void meshfix__count_geometry(const meshfix__mesh *m, meshfix__g
 }
 
 /* The bytes of every array the geometric stage takes from its arena, in
-   the order it takes them (each aligned to 16); 0 when that overflows. */
+   the order it takes them (aligned as meshfix__add_size aligns them), and
+   the slack that aligns the arena's start; 0 when that overflows. */
 MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *c, int policy)
 {
     size_t total = 0, at, n = c->triangles, p = c->patches, b = c->boundary, pairs = c->boundary + c->rings;
@@ -4607,15 +4725,19 @@ MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *
         /* units, the tree over shells, the nets of rings */
         meshfix__add_size(&total, p, sizeof(meshfix__unit), &at) &&
         meshfix__add_size(&total, p, 9 * sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, MESHFIX__NODE_ALIGN - 16, 1, &at) &&
         meshfix__add_size(&total, p, sizeof(meshfix__node), &at) &&
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(int), &at) &&
         /* the trees and VISIBILITY's samples */
         meshfix__add_size(&total, p + 1, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, n, 9 * sizeof(float), &at) && meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, n + MESHFIX__SLOT_PAD, 9 * sizeof(float), &at) &&
+        meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, n, sizeof(double), &at) &&
+        meshfix__add_size(&total, MESHFIX__NODE_ALIGN - 16, 1, &at) &&
         meshfix__add_size(&total, n + p + 1, sizeof(meshfix__node), &at) &&
-        meshfix__add_size(&total, vis, sizeof(unsigned int), &at);
+        meshfix__add_size(&total, vis, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, MESHFIX__ARENA_SLACK, 1, &at);
     return ok ? total : 0;
 }
 
@@ -4962,8 +5084,6 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
         bytes = meshfix__geometry_bytes(&counts, policy);
         if (bytes == 0)
             return MESHFIX_ERROR_TOO_LARGE;
-        arena.used = 0;
-        arena.size = bytes;
         if (rest->base != NULL) {
             if (rest->size - rest->used < bytes)
                 return MESHFIX_ERROR_SCRATCH_TOO_SMALL;
@@ -4975,6 +5095,10 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
                 return MESHFIX_ERROR_OUT_OF_MEMORY;
             arena.base = own;
         }
+        /* offsets in the arena are aligned to up to 64: so is its start */
+        arena.used = 0;
+        arena.size = bytes - MESHFIX__ARENA_SLACK;
+        arena.base += (MESHFIX__ARENA_SLACK - (size_t)arena.base % MESHFIX__ARENA_SLACK) % MESHFIX__ARENA_SLACK;
         if (!meshfix__decide_by_geometry(m, &arena, r)) {
             meshfix__release(allocator, own);
             return MESHFIX_ERROR_OUT_OF_MEMORY;
