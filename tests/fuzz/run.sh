@@ -1,23 +1,76 @@
 #!/usr/bin/env bash
-# make fuzz: builds both libFuzzer targets with ASan + UBSan and runs each
-# for FUZZ_SECONDS (default 60) from the seed corpus in tests/fuzz/corpus.
+# make fuzz: builds the libFuzzer targets with ASan + UBSan and runs each
+# for FUZZ_SECONDS (default 60) from its seed corpus in
+# tests/fuzz/corpus/<target>, then prints the executions per target.
+#   meshfix  every entry point on small meshes (64 vertices, integer grid)
+#   loaders  the example OBJ / OFF / STL / PLY loaders, then a repair
+#   stress   large real-valued meshes, every option field, scratch,
+#            parallel_for, SDF and weld, with an oracle for each call
+#   stress-msan  the same with MemorySanitizer instead (reads of memory
+#            never written); not in the default list: FUZZ_TARGETS adds it
+# A crash does not stop the other targets: its input is saved in
+# build/fuzz/crashes_<target>/ and the script exits 1 after the summary.
+# FUZZ_TARGETS="stress" runs a subset; FUZZ_CFLAGS adds compiler flags,
+# e.g. -DSTRESS_TOLERATE_KNOWN (see tests/fuzz/crashes/README.md);
+# FUZZ_FLAGS adds libFuzzer flags, e.g. "-fork=1 -ignore_crashes=1" to go
+# on past crashes (each is still saved, and the target counts as failed).
 # Installs clang and its fuzzer runtime when missing (Debian; as root).
-set -euo pipefail
+set -uo pipefail
 cd "$(dirname "$0")/../.."
 if ! printf 'int LLVMFuzzerTestOneInput(const char*d,unsigned long n){return 0;}' |
         clang -x c -fsanitize=fuzzer - -o /tmp/meshfix_fuzz_probe 2>/dev/null; then
     export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq && apt-get install -y -qq clang libclang-rt-14-dev >/dev/null
+    apt-get update -qq && apt-get install -y -qq clang libclang-rt-14-dev >/dev/null || exit 1
 fi
 seconds=${FUZZ_SECONDS:-60}
+targets=${FUZZ_TARGETS:-meshfix loaders stress}
 mkdir -p build/fuzz
-for target in meshfix loaders; do
-    clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-        -o build/fuzz/fuzz_$target tests/fuzz/fuzz_$target.c -lm
-    mkdir -p build/fuzz/corpus_$target
-    echo "== fuzz_$target for $seconds s"
-    build/fuzz/fuzz_$target -max_total_time="$seconds" -timeout=10 -print_final_stats=1 -max_len=4096 \
-        build/fuzz/corpus_$target tests/fuzz/corpus/$target 2>&1 |
-        grep -E 'stat::number_of_executed_units|stat::peak_rss|ERROR|SUMMARY|Done' || true
-    test "${PIPESTATUS[0]}" -eq 0
+failed=0
+summary=""
+for target in $targets; do
+    # the stress target's inputs expand into thousands of triangles: longer
+    # inputs and a longer per-input limit (an input costs well under a second)
+    source=$target sanitizers="address,undefined -fno-sanitize-recover=all" max_len=4096 timeout=10
+    case $target in
+    stress) max_len=200000 timeout=30 ;;
+    stress-msan) source=stress sanitizers="memory -fsanitize-memory-track-origins=2" max_len=200000 timeout=60 ;;
+    esac
+    # shellcheck disable=SC2086
+    if ! clang -g -O1 -fsanitize=fuzzer,$sanitizers ${FUZZ_CFLAGS:-} \
+            -o build/fuzz/fuzz_$target tests/fuzz/fuzz_$source.c -lm; then
+        summary+=$(printf '%-10s %12s  %s' "$target" "-" "does not build")$'\n'
+        failed=1
+        continue
+    fi
+    mkdir -p build/fuzz/corpus_$target build/fuzz/crashes_$target
+    log=build/fuzz/fuzz_$target.log
+    touch build/fuzz/.start_$target # crashes of this run: the files newer than this
+    echo "== fuzz_$target for $seconds s (log: $log)"
+    # shellcheck disable=SC2086
+    build/fuzz/fuzz_$target -max_total_time="$seconds" -timeout=$timeout -print_final_stats=1 -max_len=$max_len \
+        -artifact_prefix=build/fuzz/crashes_$target/ ${FUZZ_FLAGS:-} \
+        build/fuzz/corpus_$target tests/fuzz/corpus/$source >"$log" 2>&1
+    status=$?
+    grep -E 'stat::number_of_executed_units|stat::peak_rss|invariant violated|assertion failed|ERROR|WARNING: Memory|SUMMARY|Test unit written|Done' "$log" |
+        awk '!seen[$0]++'
+    grep -E '^#[0-9]+: cov:' "$log" | tail -n 1 # fork mode: the last progress line
+    # executions: the final stats, libFuzzer's "Done N runs", or in fork
+    # mode the last "#N: cov: ..." line
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+    [ -n "$runs" ] || runs=$(sed -n 's/^Done \([0-9]*\) runs.*/\1/p' "$log" | tail -n 1)
+    [ -n "$runs" ] || runs=$(sed -n 's/^#\([0-9]*\): cov:.*/\1/p' "$log" | tail -n 1)
+    [ -n "$runs" ] || runs="?"
+    crashes=$(find build/fuzz/crashes_$target -type f -newer build/fuzz/.start_$target | wc -l)
+    if [ "$status" -eq 0 ] && [ "$crashes" -eq 0 ]; then
+        outcome="ok"
+    else
+        outcome="FAILED (exit $status, $crashes inputs in build/fuzz/crashes_$target/)"
+        failed=1
+    fi
+    summary+=$(printf '%-10s %12s  %s' "$target" "$runs" "$outcome")$'\n'
 done
+echo
+echo "== executions per target ($seconds s each)"
+printf '%-10s %12s  %s\n' target executions outcome
+printf '%s' "$summary"
+exit $failed
