@@ -1,6 +1,22 @@
-// make bench: meshfix.h against OpenMesh on generated closed meshes.
+// make bench: meshfix.h measured against baselines run in the same process,
+// on the same data, so that the ratios carry over between machines.
 //
-// For each size, in one run on the same mesh:
+//   Part 0  the flood fill against OpenMesh building its half-edge
+//           structure, on closed spheres (this file), and the SDF policy;
+//   Part 1  rays: meshfix's BVH against Embree 3, one thread each
+//           (tests/bench/rays.cpp; `build/bench --only rays` re-runs it alone);
+//   Part 2  the whole default policy on models cut into unwelded patches
+//           with gaps, next to the flood fill and OpenMesh (tests/bench/cut.cpp);
+//   Part 3  quality: the STL stored-normal truth over the corpus and the
+//           generated scenes (tests/bench/quality.cpp runs tests/eval/*);
+//   Part 4  adversarial families at n and 4n (tests/bench/adversarial.cpp).
+//
+// Usage: bench [--quick] [--only PARTS] [--head FILE] [--corpus DIR] [--build DIR]
+//        PARTS: comma-separated of flood, sdf, rays, cut, quality, adversarial.
+// Every time is the best and the median of several runs (a shared, noisy
+// machine); ratios are between the best runs.
+//
+// Part 0, for each size, in one run on the same mesh:
 //   orient   meshfix_orient (policy auto, positions given) on a copy with 30%
 //            of its triangles reversed: the flood-fill repair;
 //   inspect  meshfix_inspect on the same scrambled mesh;
@@ -13,9 +29,11 @@
 // block this large back to the kernel on free, so each fresh call pays
 // first-touch page faults, while OpenMesh's smaller vectors come back warm
 // from the heap on its repeated runs. Peak scratch is counted through the
-// allocator hooks. Ratios are what to compare across machines.
+// allocator hooks.
+#define MESHFIX_STATIC
 #define MESHFIX_IMPLEMENTATION
 #include "../meshfix.h"
+#include "bench/common.h" // before the implementations below: it includes meshio.h
 #define MESHIO_IMPLEMENTATION
 #include "../examples/meshio.h"
 #define MESHGEN_IMPLEMENTATION
@@ -114,9 +132,10 @@ static int bench_sdf(bool quick)
     size_t triangles = g.index_count / 3;
     std::vector<unsigned int> clean(g.indices, g.indices + g.index_count), out(g.index_count);
     gen_flip_random(&g, 0.3, 8, nullptr);
-    std::vector<unsigned char> scratch(meshfix_scratch_size(g.vertex_count, g.index_count));
     meshfix_options options;
     std::memset(&options, 0, sizeof(options));
+    options.policy = MESHFIX_POLICY_SDF; // and MAJORITY: neither casts rays, the same scratch
+    std::vector<unsigned char> scratch(meshfix_scratch_size(g.index_count, g.vertex_count, &options));
     options.scratch = scratch.data();
     options.scratch_size = scratch.size();
     int status = 0;
@@ -142,7 +161,7 @@ static int bench_sdf(bool quick)
     double patch = run(g.positions, MESHFIX_POLICY_SDF, MESHFIX_SDF_PER_PATCH);
     double evaluations = double(report.sdf_evaluations) / triangles;
     double plain = run(g.positions, MESHFIX_POLICY_SDF, MESHFIX_SDF_PER_TRIANGLE);
-    std::printf("\nSDF policy, smooth union of two spheres, %zu triangles, 30%% reversed, reused scratch, with report:\n\n",
+    std::printf("\n## Part 0b. SDF policy against the flood fill, smooth union of two spheres, %zu triangles, 30%% reversed, reused scratch, with report (time / flood fill: how many times longer)\n\n",
                 triangles);
     std::printf("| repair | SDF evaluations / triangle | ns / triangle | time / flood fill |\n|---|---:|---:|---:|\n");
     std::printf("| flood fill (topology only) | 0 | %.1f | 1.0x |\n", 1e9 * flood / triangles);
@@ -154,150 +173,18 @@ static int bench_sdf(bool quick)
 }
 
 
-// A closed model cut into patches that share no vertices: triangles are
-// grouped by the cell of a grid their centroid falls in, every group gets
-// its own copy of its vertices, and half of the groups are reversed.
-static void cut_by_grid(const mio_mesh &g, int cells, mio_mesh *out, size_t *groups)
-{
-    size_t triangles = g.index_count / 3;
-    std::vector<unsigned long long> key(g.index_count);
-    std::map<unsigned long long, unsigned int> copy;
-    std::map<unsigned int, unsigned int> group_id;
-    out->positions = (float *)std::malloc(3 * g.index_count * sizeof(float));
-    out->indices = (unsigned int *)std::malloc(g.index_count * sizeof(unsigned int));
-    out->index_count = g.index_count;
-    out->vertex_count = 0;
-    for (size_t t = 0; t < triangles; ++t) {
-        float c[3] = {0, 0, 0};
-        for (int k = 0; k < 3; ++k)
-            for (int a = 0; a < 3; ++a)
-                c[a] += g.positions[3 * g.indices[3 * t + k] + a] / 3.0f;
-        unsigned int cell = 0;
-        for (int a = 0; a < 3; ++a)
-            cell = cell * unsigned(cells) + unsigned(std::min(cells - 1, std::max(0, int((c[a] + 1.0f) * 0.5f * cells))));
-        unsigned int group = group_id.emplace(cell, unsigned(group_id.size())).first->second;
-        for (int k = 0; k < 3; ++k) {
-            unsigned long long id = (unsigned long long)group << 32 | g.indices[3 * t + k];
-            auto it = copy.find(id);
-            if (it == copy.end()) {
-                it = copy.emplace(id, unsigned(out->vertex_count)).first;
-                std::memcpy(out->positions + 3 * out->vertex_count, g.positions + 3 * g.indices[3 * t + k], 12);
-                out->vertex_count++;
-            }
-            out->indices[3 * t + k] = it->second;
-        }
-        if (group % 2)
-            std::swap(out->indices[3 * t + 1], out->indices[3 * t + 2]);
-    }
-    *groups = group_id.size();
-}
-
-// Incoherent rays: random origins in the bounding box, random directions.
-static void bench_rays(const mio_mesh &g)
-{
-    meshfix__plan plan;
-    meshfix__mesh m;
-    meshfix__make_plan(&plan, g.vertex_count, g.index_count / 3);
-    std::vector<unsigned char> block(plan.total + 16);
-    unsigned char *aligned = block.data() + (16 - size_t(block.data()) % 16) % 16;
-    meshfix__bind(&m, aligned, &plan, g.indices, g.index_count, g.positions, 12, g.vertex_count, nullptr, 0);
-    meshfix__mark_degenerate(&m);
-    meshfix_allocator allocator;
-    std::memset(&allocator, 0, sizeof(allocator));
-    meshfix__bvh bvh;
-    auto start = std::chrono::steady_clock::now();
-    meshfix__build_bvh(&bvh, &m, &allocator, meshfix__has_area);
-    double build = seconds_since(start);
-    const int rays = 1000000;
-    std::vector<float> rays_data(6 * size_t(rays));
-    unsigned int state = 1;
-    for (int i = 0; i < rays; ++i) {
-        for (int k = 0; k < 3; ++k)
-            rays_data[6 * i + k] = bvh.low[k] + (bvh.high[k] - bvh.low[k]) * meshfix__random(&state);
-        meshfix__random_direction(&state, &rays_data[6 * i + 3]);
-    }
-    unsigned int hits = 0;
-    for (int mode = 0; mode < 2; ++mode) {
-        double t = fastest(3, [&] {
-            hits = 0;
-            for (int i = 0; i < rays; ++i) {
-                meshfix__ray ray;
-                meshfix__query q;
-                meshfix__setup_ray(&ray, &rays_data[6 * i], &rays_data[6 * i + 3], 0.0f, 1e30f);
-                q.mode = mode == 0 ? MESHFIX__CLOSEST_HIT : MESHFIX__ANY_HIT;
-                q.skip = MESHFIX__NONE;
-                hits += (unsigned)meshfix__trace(&bvh, &ray, &q);
-            }
-        });
-        std::printf("| %s | %zu | %.2f | %.1f%% | %.0f |\n", mode == 0 ? "closest hit" : "any hit", g.index_count / 3,
-                    rays / t / 1e6, 100.0 * hits / rays, 1e3 * build);
-    }
-    meshfix__free_bvh(&bvh, &allocator);
-}
-
-static int bench_visibility(bool quick)
-{
-    mio_mesh g, cutm;
-    if (!gen_sphere(&g, quick ? 101 : 501, quick ? 200 : 1000, 0, 0, 0, 1))
-        return 1;
-    std::printf("\nRay caster, one core, 1M incoherent rays (origins in the box, random directions), BVH over a sphere:\n\n");
-    std::printf("| query | triangles | Mrays/s | rays that hit | BVH build ms |\n|---|---:|---:|---:|---:|\n");
-    bench_rays(g);
-    size_t groups = 0;
-    cut_by_grid(g, quick ? 6 : 12, &cutm, &groups);
-    size_t triangles = cutm.index_count / 3;
-    std::vector<unsigned int> out(cutm.index_count);
-    PeakAllocator counter;
-    meshfix_options options = counting_options(&counter);
-    meshfix_report report;
-    int status = 0;
-    options.policy = MESHFIX_POLICY_MAJORITY;
-    double flood = fastest(3, [&] {
-        status |= meshfix_orient(out.data(), cutm.indices, cutm.index_count, nullptr, cutm.vertex_count, 12, &options,
-                                 nullptr) != MESHFIX_OK;
-    });
-    counter = PeakAllocator();
-    options.policy = MESHFIX_POLICY_VISIBILITY;
-    double visibility = fastest(3, [&] {
-        status |= meshfix_orient(out.data(), cutm.indices, cutm.index_count, cutm.positions, cutm.vertex_count, 12,
-                                 &options, &report) != MESHFIX_OK;
-    });
-    // every patch must face out again: compare with the uncut sphere's winding
-    size_t outward = 0;
-    for (size_t t = 0; t < triangles; ++t) {
-        const float *a = cutm.positions + 3 * out[3 * t], *b = cutm.positions + 3 * out[3 * t + 1];
-        const float *c = cutm.positions + 3 * out[3 * t + 2];
-        float u[3], v[3], n[3];
-        for (int k = 0; k < 3; ++k)
-            u[k] = b[k] - a[k], v[k] = c[k] - a[k];
-        n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
-        outward += n[0] * (a[0] + b[0] + c[0]) + n[1] * (a[1] + b[1] + c[1]) + n[2] * (a[2] + b[2] + c[2]) > 0;
-    }
-    std::printf("\nVisibility policy on a sphere of %zu triangles cut into %zu unwelded patches, half reversed:\n\n",
-                triangles, report.patches);
-    std::printf("| repair | seconds | ns / triangle | time / flood fill | peak bytes / triangle | rays | outward |\n"
-                "|---|---:|---:|---:|---:|---:|---:|\n");
-    std::printf("| flood fill (topology only) | %.3f | %.1f | 1.0x | | | |\n", flood, 1e9 * flood / triangles);
-    std::printf("| visibility + coherence | %.3f | %.1f | %.1fx | %.1f | %zu | %.2f%% |\n", visibility,
-                1e9 * visibility / triangles, visibility / flood, double(counter.peak) / triangles, report.rays_cast,
-                100.0 * outward / triangles);
-    if (outward != triangles)
-        status = 1;
-    mio_free(&g);
-    mio_free(&cutm);
-    return status;
-}
-
-int main(int argc, char **argv)
+static int bench_flood(bool quick, std::vector<std::string> *summary)
 {
     // rings x segments of a UV sphere: 2 * segments * (rings - 1) triangles
     struct Size {
         unsigned rings, segments;
     } sizes[] = {{51, 100}, {159, 316}, {501, 1000}, {1001, 2000}};
     size_t count = sizeof(sizes) / sizeof(sizes[0]);
-    if (argc > 1 && std::strcmp(argv[1], "--quick") == 0)
+    if (quick)
         count = 2;
-
+    std::printf("\n## Part 0. Flood fill against OpenMesh's half-edge build, closed spheres, 30%% of triangles reversed\n\n"
+                "ns per triangle, best of several runs; \"OpenMesh / x\" is how many times longer OpenMesh takes to\n"
+                "build its half-edge structure of the clean sphere than meshfix takes to repair the scrambled one.\n\n");
     std::printf("| triangles | flood fill | same, reused scratch | Mtri/s | auto (positions) | + report | inspect "
                 "| OpenMesh build | OpenMesh / flood fill | OpenMesh / reused | scratch B/tri |\n");
     std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -334,7 +221,7 @@ int main(int argc, char **argv)
         };
         double flood = repair(nullptr, MESHFIX_POLICY_MAJORITY, nullptr);
         verify("flood fill");
-        std::vector<unsigned char> scratch(meshfix_scratch_size(g.vertex_count, g.index_count));
+        std::vector<unsigned char> scratch(meshfix_scratch_size(g.index_count, g.vertex_count, &options));
         options.scratch = scratch.data();
         options.scratch_size = scratch.size();
         double reused = repair(nullptr, MESHFIX_POLICY_MAJORITY, nullptr);
@@ -362,8 +249,82 @@ int main(int argc, char **argv)
                     flood * ns, reused * ns, triangles / reused / 1e6, automatic * ns, reported * ns, inspect * ns,
                     openmesh * ns, openmesh / flood, openmesh / reused, double(counter.peak) / triangles);
         std::fflush(stdout);
+        if (s + 1 == count) {
+            char line[256];
+            std::snprintf(line, sizeof(line),
+                          "flood fill, %zu-triangle sphere: OpenMesh's half-edge build takes %.1fx the time of the "
+                          "repair (%.1fx with reused scratch); the default policy with positions %.1f ns/triangle",
+                          triangles, openmesh / flood, openmesh / reused, automatic * ns);
+            summary->push_back(line);
+        }
         mio_free(&g);
     }
-    status |= bench_sdf(count == 2);
-    return status | bench_visibility(count == 2);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    bench::Settings settings;
+    std::string only;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        if (a == "--quick")
+            settings.quick = true;
+        else if (a == "--only" && i + 1 < argc)
+            only = std::string(",") + argv[++i] + ",";
+        else if (a == "--head" && i + 1 < argc)
+            settings.head_stl = argv[++i];
+        else if (a == "--corpus" && i + 1 < argc)
+            settings.corpus = argv[++i];
+        else if (a == "--build" && i + 1 < argc)
+            settings.build_dir = argv[++i];
+        else {
+            std::fprintf(stderr, "usage: bench [--quick] [--only flood,sdf,rays,cut,quality,adversarial] [--head FILE] "
+                                 "[--corpus DIR] [--build DIR]\n");
+            return 2;
+        }
+    }
+    auto wanted = [&](const char *part) { return only.empty() || only.find(std::string(",") + part + ",") != std::string::npos; };
+    auto load = [] {
+        char text[64] = "?";
+        if (FILE *f = std::fopen("/proc/loadavg", "r")) {
+            if (!std::fgets(text, sizeof(text), f))
+                text[0] = 0;
+            std::fclose(f);
+        }
+        std::string s(text);
+        return s.substr(0, s.find(' ', s.find(' ', s.find(' ') + 1) + 1));
+    };
+    std::printf("# meshfix.h bench%s: every number is measured in this run against a baseline run alongside it\n",
+                settings.quick ? " (--quick)" : "");
+    std::printf("(load average at the start: %s; other processes on this machine make the medians noisier than the "
+                "bests)\n",
+                load().c_str());
+    auto start = std::chrono::steady_clock::now();
+    std::vector<std::string> summary;
+    int status = 0;
+    auto part = [&](const char *name, int result) {
+        if (result) {
+            std::printf("\n(part %s: a check FAILED)\n", name);
+            summary.push_back(std::string("FAILED: a check of part ") + name);
+        }
+        status |= result;
+        std::fflush(stdout);
+    };
+    if (wanted("flood"))
+        part("flood", bench_flood(settings.quick, &summary));
+    if (wanted("sdf"))
+        part("sdf", bench_sdf(settings.quick));
+    if (wanted("rays"))
+        part("rays", bench::part_rays(settings, &summary));
+    if (wanted("cut"))
+        part("cut", bench::part_cut(settings, &summary));
+    if (wanted("quality"))
+        part("quality", bench::part_quality(settings, &summary));
+    if (wanted("adversarial"))
+        part("adversarial", bench::part_adversarial(settings, &summary));
+    std::printf("\n## Summary (%.0f s; load average at the end: %s)\n\n", bench::seconds_since(start), load().c_str());
+    for (const std::string &line : summary)
+        std::printf("- %s\n", line.c_str());
+    return status;
 }
