@@ -19,22 +19,25 @@ $(B)/meshfix: examples/meshfix.c $(HEADERS) | $(B)
 $(B)/demo_mesh: examples/demo_mesh.c $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/demo_mesh.c -lm
 
+$(B)/sdf_demo: examples/sdf_demo.c $(HEADERS) | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/sdf_demo.c -lm
+
 # Each C suite is built four ways: plain, with the sanitizers, with
 # -O3 -ffast-math (what engines build with) and, where a 32-bit toolchain
 # is installed (tests/run_all.sh checks), with -m32.
-SUITES = test_meshfix test_sdf test_visibility test_hostile test_trust
+SUITES = test_meshfix test_sdf test_visibility test_hostile test_trust test_api
 FAST = -O3 -ffast-math -g
 
-$(B)/test_%: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h $(HEADERS) | $(B)
+$(B)/test_%: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h tests/models.h $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
 
-$(B)/test_%_asan: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h $(HEADERS) | $(B)
+$(B)/test_%_asan: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h tests/models.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ $< -lm
 
-$(B)/test_%_fast: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h $(HEADERS) | $(B)
+$(B)/test_%_fast: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h tests/models.h $(HEADERS) | $(B)
 	$(CC) -std=c99 $(FAST) $(WARN) -o $@ $< -lm
 
-$(B)/test_%_m32: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h $(HEADERS) | $(B)
+$(B)/test_%_m32: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h tests/models.h $(HEADERS) | $(B)
 	$(CC) -m32 -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
 
 $(B)/test_openmesh: tests/test_openmesh.cpp $(HEADERS) | $(B)

@@ -1,8 +1,8 @@
-/* meshfix.h - v0.1.0 - triangle winding (face orientation) repair - MIT license, see end of file
+/* meshfix.h - v0.2.0 - triangle winding (face orientation) repair - MIT license, see end of file
 
    Finds and repairs inconsistent triangle winding in indexed triangle meshes:
-   reports what is wrong (inspect), and flips the triangles that face the
-   wrong way (orient). C99 or C++, libc and libm only, no globals.
+   reports what is wrong (inspect, check), and flips the triangles that face
+   the wrong way (orient). C99 or C++, libc and libm only, no globals.
 
    DO THIS in exactly one C or C++ file:
 
@@ -13,34 +13,56 @@
 
    QUICK START
 
-       meshfix_report report;
-       meshfix_result r = meshfix_orient(indices, indices, index_count,
-                                         positions, vertex_count, sizeof(float) * 3,
-                                         NULL, &report);
-       if (r != MESHFIX_OK)
-           printf("meshfix: %s\n", meshfix_result_string(r));
-       else
-           printf("flipped %u triangles\n", (unsigned)report.triangles_flipped);
+       #include <stdio.h>
+       #include "meshfix.h"
 
-       assert(meshfix_check(indices, index_count, positions, vertex_count,
-                            sizeof(float) * 3, MESHFIX_REQUIRE_SOLID));
+       int fix_winding(unsigned int *indices, size_t index_count,
+                       const float *positions, size_t vertex_count)
+       {
+           meshfix_report report;
+           char line[160];
+           meshfix_result r = meshfix_orient(indices, indices, index_count, positions,
+                                             vertex_count, 3 * sizeof(float), NULL, &report, NULL);
+           if (r != MESHFIX_OK) {
+               printf("meshfix: %s\n", meshfix_result_string(r));
+               return 0;
+           }
+           meshfix_summary(&report, line, sizeof(line));
+           printf("%s\n", line); // "clean: ...", "fixed 72 triangles in 3 patches", ...
+           return 1;
+       }
+
+       int is_solid(const unsigned int *indices, size_t index_count,
+                    const float *positions, size_t vertex_count)
+       {
+           meshfix_check_failure why;
+           if (meshfix_check(indices, index_count, positions, vertex_count, 0,
+                             MESHFIX_REQUIRE_SOLID, NULL, &why))
+               return 1;
+           printf("%s\n", why.text); // "not closed: 3 boundary edges; edge 1-2 of ..."
+           return 0;
+       }
 
    MESH CONVENTIONS
-   A mesh is a triangle list: index_count / 3 triangles of 32-bit indices into
-   a vertex array whose first 12 bytes per vertex are float x, y, z.
-   Front faces wind counter-clockwise (right-handed), so the face normal of
-   (a, b, c) is (b - a) x (c - a). An edge is an unordered vertex pair; it is
-   a boundary edge when one triangle uses it, manifold when two do and
-   non-manifold when three or more do. Two triangles are consistently wound
-   across a manifold edge when they traverse it in opposite directions; an
-   edge where some direction is used by two triangles is inconsistent (what
-   the glTF validator calls GEOMETRY_INCONSISTENT_WINDING; an edge of three
-   or more triangles is always inconsistent). A patch is a maximal set of
-   triangles connected through manifold edges; a component is a maximal set
-   connected through any shared edge. A patch is closed when each of its
-   edges is used by an even number of its own triangles. Triangles that
-   repeat a vertex index are degenerate: they are counted, take no part in
-   the topology and are never flipped. Flipping (a, b, c) writes (a, c, b):
+   A mesh is a triangle list: index_count / 3 triangles of 32-bit (or, with
+   options.index_size = 2, 16-bit) indices into vertex_count vertices whose
+   first 12 bytes are float x, y, z (24 bytes of double with
+   options.position_size = 8), `stride` bytes apart (0: packed). Front faces
+   wind counter-clockwise (right-handed): the normal of (a, b, c) is
+   (b - a) x (c - a). Corners with bit-identical positions are one vertex,
+   whatever their index (options.topology: by index only, or welded within
+   a tolerance), so a vertex buffer split at UV or normal seams works as it
+   is. An edge is a pair of vertices; it is a boundary edge when one
+   triangle uses it, manifold when two do and non-manifold when three or
+   more do. Two triangles are consistently wound across a manifold edge
+   when they run it in opposite directions; an edge where some direction is
+   used by two triangles is inconsistent (the GEOMETRY_INCONSISTENT_WINDING
+   check of the xeokit SDK's scene-model inspector; an edge of three or more
+   triangles always is). A patch is a maximal set of triangles connected
+   through manifold edges; a component, through any shared edge. A patch is
+   closed when each of its edges is used by an even number of its own
+   triangles. Triangles that repeat a vertex are degenerate: counted, no
+   part of the topology, never flipped. Flipping (a, b, c) writes (a, c, b):
    the first (provoking) vertex stays first.
 
    CONFIGURATION (define before including the implementation)
@@ -50,111 +72,112 @@
        MESHFIX_FREE(p,u)     free     define both or neither
        MESHFIX_ASSERT(x)     assert   internal invariants only, never input
        MESHFIX_DEBUG         on when NDEBUG is not defined: extra invariant checks
-       MESHFIX_MEMSET, MESHFIX_MEMCPY, MESHFIX_SQRT   string.h / math.h
+       MESHFIX_NO_SIMD       -        the scalar ray tests instead of SSE2 / NEON
+                                      (the same results, bit for bit)
+       MESHFIX_TRACE((f,..)) nothing  printf-like trace of the decision stage
+       MESHFIX_MEMSET, MESHFIX_MEMCPY, MESHFIX_SQRT, MESHFIX_FLOOR, MESHFIX_FABS,
+       MESHFIX_SIN, MESHFIX_COS       string.h / math.h
 
    API
        meshfix_orient        repair winding into a destination buffer (or report only)
        meshfix_inspect       report topology and winding problems, never writes
-       meshfix_inspect_ex    the same with options (allocator, per-component output)
-       meshfix_check         one-line assertion for unit tests
+       meshfix_check         one-line assertion for unit tests, with the reason
+       meshfix_summary       a report in one line of plain words
        meshfix_weld          merge vertices closer than a tolerance (soups, CAD)
        meshfix_scratch_size  bytes of scratch memory a call needs at most
-       meshfix_result_string text of a result code
+       meshfix_result_string, meshfix_verdict_string
 
-   ALGORITHM (orient and inspect share stages 1-5)
-       1. validate: counts, pointers, stride, every index < vertex_count.
-       2. edges: a counting sort puts every half-edge in the bucket of its
-          lower vertex; each bucket is sorted by its higher vertex, so the
-          half-edges of one edge lie together: a pair become mates, three
-          or more are linked into a ring, a single one is a boundary.
-       3. patches: the flood fill across manifold edges, done as a
-          union-find with parity in triangle order: each triangle gets its
-          flip relative to the patch seed, its lowest triangle (a
-          neighbour traversing the shared edge in the same direction must
-          be flipped). A contradiction means the patch is non-orientable
-          (Moebius): it is still oriented as far as its spanning tree
-          reaches and the remaining edges are reported.
-       4. components: union-find over the rings of non-manifold edges; a
-          patch is closed when it owns an even count of each ring.
-       5. policy: each patch is then turned as a whole:
-            SEED      keep the seed triangle as it is (the plain flood fill);
-            MAJORITY  the side that flips less triangle area (or fewer
-                      triangles without positions), so a patch with 90% of
-                      its triangles wrong does not come out inside-out;
-            OUTWARD   closed shells get positive signed volume, except
-                      cavities: a shell that crosses no other surface and
-                      lies inside an odd number of them (rays from 32 of
-                      its points cross the rest an odd number of times, 3
-                      of 4 deciding, so an outer shell with gaps still
-                      counts) faces inward. Open patches use MAJORITY;
-            VISIBILITY Borodin, Zachmann, Klein: per patch, the share of
-                      random rays that escape the model from each side
-                      (a BVH with a watertight ray/triangle test), the
-                      coherence of close boundary edges of other patches,
-                      and a greedy merge into super-patches with the
-                      paper's rules; each super-patch to its more visible
-                      side. For soups, CAD exports with gaps, open sheets;
-            UP        each patch toward the side its area-weighted normal
-                      leans to along options.up (terrains, height fields);
-            SDF       for meshes extracted from a signed distance function:
-                      the area-weighted vote of the SDF gradient over the
-                      patch's triangles; per triangle (sdf_mode), the plain
-                      rule: each triangle faces along the gradient at its
-                      centroid. Per patch stays right where single samples
-                      fail: triangles with no normal (zero area) and
-                      triangles at sharp edges whose centroid gradient lies
-                      in their plane (see tests/test_sdf.c);
-            AUTO      closed shells OUTWARD, everything else VISIBILITY;
-                      MAJORITY without positions.
-       6. write: copy indices to destination and swap the last two indices
-          of each flipped triangle.
-       Time O(index_count + vertex_count) (a vertex of k edges costs
-       O(k log k)); hashing only for triangles whose three edges are all
-       non-manifold, and only to count duplicates.
-       Memory: one block of meshfix_scratch_size(vertex_count, index_count)
-       bytes, 35 bytes per triangle + 4 per vertex, freed before return;
-       none at all when the caller passes options.scratch.
-       Speed (make bench, one run, same meshes): the topology-only repair
-       is 3x to 7x faster than OpenMesh building its half-edge structure
-       with both on warm memory (about 6x at 1M triangles); a call with a
-       full report takes 2.5x to 3x the time of the repair alone.
-       References: the edge-map flood fill of the glTF winding auto-fix;
+   ALGORITHM (orient, inspect and check share it; sections of the
+   implementation below are in this order)
+       1. validate: counts, pointers, formats, every index < vertex_count,
+          before anything is read that the counts do not vouch for.
+       2. input: 16-bit indices widened; vertices with bit-identical
+          positions joined (a hash into buckets, each bucket sorted: no
+          crafted input makes it quadratic); double positions re-centred on
+          their box and converted to float.
+       3. edges: a counting sort puts every half-edge in the bucket of its
+          lower vertex; each bucket sorted by its higher vertex, so the
+          half-edges of an edge lie together: two become mates, three or
+          more a ring, one a boundary.
+       4. patches: the flood fill across manifold edges, as a union-find
+          with parity in triangle order; a contradiction means the patch
+          is non-orientable (Moebius) and its remaining edges are reported.
+       5. components: union-find over the rings of non-manifold edges.
+       6. decide: each patch is turned as a whole:
+            SEED      its lowest triangle keeps its winding (the plain flood
+                      fill of the xeokit inspector's auto-fix);
+            MAJORITY  the side that flips less area (or fewer triangles);
+            AUTO      on evidence, weighed in one place: patches that join
+                      across boundary edges running side by side
+                      (coherence) form units; a closed or nearly closed
+                      unit faces out by its signed volume, in if it is a
+                      cavity (rays from it cross the shells around it an
+                      odd number of times); an open unit by the shells
+                      around it, the parity of its own crossings and the
+                      share of rays that escape from each side; the
+                      caller's normals when given. Each vote counts only
+                      beyond evidence.sigma standard errors; without
+                      significant evidence a patch keeps the side most of
+                      its area faces: a correct mesh comes back unchanged.
+                      Rays are drawn in batches until the verdict is
+                      settled. MAJORITY without positions;
+            OUTWARD   AUTO with open units by MAJORITY;
+            VISIBILITY Borodin, Zachmann, Klein: coherence, ray-sampled
+                      visibility and the paper's greedy super-patch merge;
+            NORMALS   the caller's normals (evidence.*_normals);
+            UP        the side the area-weighted normal leans to (terrain);
+            SDF       the area-weighted vote of the SDF gradient over the
+                      patch (or, sdf.mode, each triangle on its own).
+          Rays: a two-level tree (per unit, built on demand, then over the
+          units), four-wide nodes by binned SAH, SIMD box and triangle
+          tests, the watertight ray/triangle test, so crossing counts of
+          closed surfaces are exact parities.
+       7. write: indices to destination with the flipped triangles' last
+          two swapped, then the outputs and the report.
+       Time: O(n log n) worst case, linear on ordinary meshes; the ray
+       stage costs a bounded number of rays per unit.
+       Memory: one block for stages 1-5 (35 bytes per triangle and 4 per
+       vertex; 12 and about 24 more when positions join corners, 12 per
+       vertex more for doubles), and one for the geometric decision when a
+       mesh is more than one closed shell; none when the caller passes
+       options.memory.scratch of meshfix_scratch_size() bytes.
+       References: the edge-map flood fill of the xeokit SDK's inspector;
        P. Borodin, G. Zachmann, R. Klein, "Consistent Normal Orientation for
-       Polygonal Meshes" (patches, coherence, visibility, greedy merge);
-       S. Woop, C. Benthin, I. Wald, "Watertight Ray/Triangle Intersection"
-       (JCGT 2013); T. Ize, "Robust BVH Ray Traversal" (JCGT 2013).
+       Polygonal Meshes" (CGI 2004); S. Woop, C. Benthin, I. Wald,
+       "Watertight Ray/Triangle Intersection" (JCGT 2013); T. Ize, "Robust
+       BVH Ray Traversal" (JCGT 2013).
 
    DETERMINISM & THREAD SAFETY
    The output depends only on the inputs and options: counting sorts with
-   index tie-breaks, unions in triangle order, no hash iteration, no qsort. Sums
-   are accumulated in double in a fixed order. Compilers that contract to
-   FMA or use x87 precision can change decisions whose margin is within
-   rounding (a patch whose two sides have equal area). There are no mutable
-   statics: concurrent calls on different meshes are safe with no setup.
+   index tie-breaks, unions in triangle order, seeded ray streams, sums in
+   double in a fixed order; the same on every run, with or without
+   parallel_for, with SIMD or without. Compilers that contract to FMA (or
+   use x87 precision) may change a decision whose margin is within
+   rounding. No mutable statics: concurrent calls are safe with no setup.
 
    ERRORS
-   Every function returns a meshfix_result; data problems are results, never
-   asserts. On any error nothing the caller passed is written (destination,
-   report, options outputs), and everything allocated is freed.
+   Every function returns a status; bad data is a status, never an assert.
+   On any error nothing the caller passed is written (destination, report,
+   outputs), and everything allocated is freed. NaN and infinite positions
+   are data: counted, and their triangles weigh nothing.
 
    LIMITATIONS / DOES NOT
-   - weld vertices: triangles connect only through shared indices;
-   - connect patches across T-junctions or gaps topologically (VISIBILITY
-     relates them by the distance of their boundary edges instead);
+   - connect patches across T-junctions or gaps topologically (the
+     evidence relates them by their boundary edges instead);
    - fill holes, remove degenerate or duplicate triangles, or change the
      triangle order or count;
-   - let caller scratch cover the ray-casting policies: VISIBILITY, and
-     OUTWARD / AUTO with more than one patch, allocate their BVH and ray
-     data through the allocator (about 150 bytes per triangle more);
    - promise exact answers on pathological geometry: a ray that visits
-     more than 1024 BVH nodes counts as blocked, and a coherence query
+     more than 1024 tree nodes counts as blocked, and a coherence query
      looks at 128 nearby edges at most, so that cost stays linear;
    - index_count is limited to 2^31 - 1.
 
-   VERSION HISTORY
-       0.1.0  first release: inspect, flood fill with seed / majority /
-              outward / auto / SDF / visibility / up policies, nested
-              shells, weld, check, scratch-size query.
+   VERSION HISTORY (CHANGELOG.md has the migration from 0.1)
+       0.2.0  options hold inputs only (grouped), outputs apart, one
+              inspect, check with a reason, verdict and summary, topology
+              from positions, 16-bit indices, double positions, evidence-
+              based default policy, four-wide SIMD ray tree, scratch for
+              every policy.
+       0.1.0  first release.
 */
 #ifndef MESHFIX_H
 #define MESHFIX_H
@@ -162,7 +185,7 @@
 #include <stddef.h>
 
 #define MESHFIX_VERSION_MAJOR 0
-#define MESHFIX_VERSION_MINOR 1
+#define MESHFIX_VERSION_MINOR 2
 #define MESHFIX_VERSION_PATCH 0
 #define MESHFIX_VERSION (MESHFIX_VERSION_MAJOR * 10000 + MESHFIX_VERSION_MINOR * 100 + MESHFIX_VERSION_PATCH)
 
@@ -185,12 +208,12 @@ extern "C" {
 /* Result codes and their text, from one list. */
 #define MESHFIX_RESULT_LIST(X) \
     X(MESHFIX_OK, "ok") \
-    X(MESHFIX_ERROR_INVALID_ARGUMENT, "invalid argument: NULL pointer with a non-zero count, bad stride or unknown option value") \
+    X(MESHFIX_ERROR_INVALID_ARGUMENT, "invalid argument: NULL pointer with a non-zero count, bad stride or an option out of range") \
     X(MESHFIX_ERROR_NOT_TRIANGLES, "index count is not a multiple of 3") \
     X(MESHFIX_ERROR_INDEX_OUT_OF_RANGE, "an index is not less than vertex_count") \
     X(MESHFIX_ERROR_TOO_LARGE, "too large: index_count above 2^31-1, vertex_count above 2^32 or a size that overflows") \
     X(MESHFIX_ERROR_POSITIONS_REQUIRED, "the chosen policy needs vertex positions") \
-    X(MESHFIX_ERROR_SCRATCH_TOO_SMALL, "options.scratch is smaller than meshfix_scratch_size()") \
+    X(MESHFIX_ERROR_SCRATCH_TOO_SMALL, "options.memory.scratch is smaller than meshfix_scratch_size()") \
     X(MESHFIX_ERROR_OUT_OF_MEMORY, "out of memory") \
     X(MESHFIX_ERROR_NON_FINITE, "a position is NaN or infinite (meshfix_weld)")
 
@@ -203,16 +226,26 @@ typedef enum meshfix_result {
 
 /* Which way each consistently wound patch ends up facing. */
 typedef enum meshfix_policy {
-    MESHFIX_POLICY_AUTO = 0, /* closed shells OUTWARD, the rest VISIBILITY; MAJORITY without positions */
-    MESHFIX_POLICY_SEED,     /* the patch's lowest triangle keeps its winding */
-    MESHFIX_POLICY_MAJORITY, /* the side that flips less area (or fewer triangles) */
-    MESHFIX_POLICY_OUTWARD,  /* closed shells out (cavities in), open patches by MAJORITY */
-    MESHFIX_POLICY_SDF,      /* along the gradient of options.sdf (needs positions and sdf) */
-    MESHFIX_POLICY_VISIBILITY, /* Borodin et al.: boundary coherence + ray-sampled visibility */
-    MESHFIX_POLICY_UP,       /* each patch faces the side its normal leans to along options.up */
-    MESHFIX_POLICY_NORMALS,  /* each patch faces the way the caller's normals say (options.*_normals) */
+    MESHFIX_POLICY_AUTO = 0,   /* the evidence decides: closed shells out (cavities in), open parts by the
+                                  shells around them, their own crossings and escaping rays, the caller's
+                                  normals when given; no evidence, no flip. MAJORITY without positions */
+    MESHFIX_POLICY_SEED,       /* the patch's lowest triangle keeps its winding (the plain flood fill) */
+    MESHFIX_POLICY_MAJORITY,   /* the side that flips less area (or fewer triangles) */
+    MESHFIX_POLICY_OUTWARD,    /* AUTO without the evidence for open parts: those by MAJORITY */
+    MESHFIX_POLICY_SDF,        /* along the gradient of options.sdf.distance */
+    MESHFIX_POLICY_VISIBILITY, /* Borodin et al.: boundary coherence, ray-sampled visibility, greedy merge */
+    MESHFIX_POLICY_UP,         /* each patch faces the side its normal leans to along options.up */
+    MESHFIX_POLICY_NORMALS,    /* each patch faces the way options.evidence's normals say */
     MESHFIX_POLICY_COUNT
 } meshfix_policy;
+
+/* Which corners are one vertex for the edge map. */
+typedef enum meshfix_topology {
+    MESHFIX_TOPOLOGY_POSITIONS = 0, /* corners with bit-identical positions (-0 = +0), whatever their index:
+                                       an engine's vertex buffer split at UV and normal seams works as it is */
+    MESHFIX_TOPOLOGY_INDICES,       /* equal indices only */
+    MESHFIX_TOPOLOGY_WELD           /* positions within options.weld_tolerance (as meshfix_weld) */
+} meshfix_topology;
 
 /* How MESHFIX_POLICY_SDF decides. */
 typedef enum meshfix_sdf_mode {
@@ -220,18 +253,90 @@ typedef enum meshfix_sdf_mode {
     MESHFIX_SDF_PER_TRIANGLE   /* each triangle by the gradient at its centroid alone */
 } meshfix_sdf_mode;
 
-typedef struct meshfix_allocator {
-    void *(*alloc_fn)(size_t size, void *user_data);
-    void (*free_fn)(void *ptr, void *user_data);
+/* Options: inputs only, all zero = defaults, a NULL pointer = all zero.
+   `meshfix_options o = {0};` in C and C++, `meshfix_options o = {};` in
+   C++. Fields are added at the end of a group, with 0 meaning what the
+   library did before, so zero-initialised callers keep compiling and
+   keep their results. */
+typedef struct meshfix_memory_options {
+    void *(*alloc_func)(size_t size, void *user_data); /* NULL: MESHFIX_MALLOC / MESHFIX_FREE */
+    void (*free_func)(void *ptr, void *user_data);
     void *user_data;
-} meshfix_allocator;
+    void *scratch;        /* meshfix_scratch_size() bytes: the call allocates nothing */
+    size_t scratch_size;
+} meshfix_memory_options;
 
-/* Per-component facts, filled by meshfix_orient / meshfix_inspect_ex when
-   options.components is set. Components are numbered by their lowest triangle. */
+typedef struct meshfix_evidence_options {
+    /* No evidence, no flip: a vote from rays counts only within mean +-
+       sigma standard errors (default 3); a patch whose verdict has a
+       confidence below min_confidence (default 0) keeps the way most of
+       its area faces ("repair only what is certain"). */
+    float sigma;
+    float min_confidence;
+    /* Normals the file or the engine has (STL facet normals, OBJ vn, glTF
+       NORMAL): evidence under AUTO, the only one under NORMALS. Per
+       triangle (index_count / 3) or per vertex (vertex_count, by index),
+       x y z floats first; stride 0 = 12 bytes. */
+    const float *triangle_normals;
+    size_t triangle_normals_stride;
+    const float *vertex_normals;
+    size_t vertex_normals_stride;
+} meshfix_evidence_options;
+
+typedef struct meshfix_visibility_options {
+    /* Rays per patch proportional to area, at least min_samples (default
+       16), `rays` in all (default 128 per patch, within 65536 .. 1048576);
+       AUTO stops a patch's rays once its verdict is settled. Coherence:
+       boundary edges of other patches closer than coherence_distance (of
+       the longest box side, default 0.02). The paper's merge thresholds:
+       c0 (default 0.5), eps (0.02), kv (1.5). */
+    size_t rays;
+    unsigned int min_samples;
+    float coherence_distance;
+    float c0, eps, kv;
+    unsigned int flags; /* MESHFIX_VISIBILITY_* */
+} meshfix_visibility_options;
+
+#define MESHFIX_VISIBILITY_COHERENCE_ONLY 1u /* merge by coherence alone; sides by majority */
+#define MESHFIX_VISIBILITY_ONLY 2u           /* no merging: each patch to its more visible side */
+
+typedef struct meshfix_sdf_options {
+    /* A signed distance function, negative inside, called with positions
+       as the caller gave them (in float). Without `gradient` it is taken
+       by central differences, 6 calls per triangle, with a step of `step`,
+       or when 0 a quarter of the triangle's longest edge but at least 32
+       float steps of the centroid's coordinates. */
+    float (*distance)(const float position[3], void *user);
+    void (*gradient)(const float position[3], float gradient[3], void *user); /* optional */
+    void *user;
+    float step;
+    meshfix_sdf_mode mode;
+} meshfix_sdf_options;
+
+typedef struct meshfix_options {
+    unsigned int index_size;     /* 4 (or 0): 32-bit indices; 2: 16-bit */
+    unsigned int position_size;  /* 4 (or 0): float x y z; 8: double (re-centred before float work) */
+    meshfix_topology topology;   /* default MESHFIX_TOPOLOGY_POSITIONS */
+    float weld_tolerance;        /* MESHFIX_TOPOLOGY_WELD */
+    meshfix_policy policy;       /* default MESHFIX_POLICY_AUTO */
+    float up[3];                 /* MESHFIX_POLICY_UP axis; 0, 0, 0 = +z */
+    unsigned int seed;           /* of the ray directions and points; 0 = a fixed default */
+    meshfix_evidence_options evidence;
+    meshfix_visibility_options visibility;
+    meshfix_sdf_options sdf;
+    meshfix_memory_options memory;
+    /* optional: run task(context, i) for i in [0, count), in any order, on
+       any threads; results are the same as without it, bit for bit */
+    void (*parallel_for)(void (*task)(void *context, size_t index), void *context, size_t count, void *user);
+    void *parallel_user;
+} meshfix_options;
+
+/* Per-component facts (outputs.components). Components are numbered by
+   their lowest triangle. */
 typedef struct meshfix_component {
     size_t first_triangle;
     size_t triangles;          /* degenerate triangles belong to no component */
-    size_t vertices;           /* distinct vertices used by its triangles */
+    size_t vertices;           /* distinct vertices (after topology) of its triangles */
     size_t edges;
     size_t edges_boundary;
     size_t edges_non_manifold;
@@ -243,80 +348,36 @@ typedef struct meshfix_component {
     double signed_volume;      /* over its closed orientable patches, as returned */
 } meshfix_component;
 
-/* All fields zero = defaults; a NULL options pointer = all defaults. */
-typedef struct meshfix_options {
-    meshfix_policy policy;         /* default MESHFIX_POLICY_AUTO */
-    meshfix_allocator allocator;   /* alloc_fn NULL = MESHFIX_MALLOC / MESHFIX_FREE */
-    void *scratch;                 /* caller memory of scratch_size bytes: no allocation at all */
-    size_t scratch_size;
-    unsigned char *flipped;        /* optional out: index_count / 3 flags, 1 = flipped */
-    unsigned int *patch_ids;       /* optional out: index_count / 3 patch ids, 0xFFFFFFFF = degenerate */
-    meshfix_component *components; /* optional out: the first components_capacity components */
-    size_t components_capacity;
-    /* MESHFIX_POLICY_SDF: a signed distance function, negative inside. Its
-       gradient at a triangle's centroid says which way is out. Without
-       sdf_gradient it is taken by central differences, 6 calls per
-       triangle, with a step of sdf_step, or when that is 0 a quarter of
-       the triangle's longest edge (small enough to stay near the triangle)
-       but at least 32 float steps of the centroid's coordinates
-       (4e-6 * (1 + max |c|), so a sliver's stencil does not collapse). */
-    float (*sdf)(const float position[3], void *user);
-    void (*sdf_gradient)(const float position[3], float gradient[3], void *user); /* optional */
-    void *sdf_user;
-    float sdf_step;
-    meshfix_sdf_mode sdf_mode;
-    /* MESHFIX_POLICY_VISIBILITY (and AUTO for what is not a closed shell).
-       Rays: per patch proportional to area, at least visibility_min_samples
-       (default 16), visibility_rays in all (default 128 per patch, within
-       65536 .. 1048576); the floor gives way when the patches alone would
-       exceed the budget. A ray that visits more than 1024 tree nodes (a
-       stack of coincident triangles) counts as blocked. Coherence: boundary edges of other patches closer
-       than coherence_distance (a fraction of the longest bounding-box side,
-       default 0.02). Merge thresholds of the paper: C0 (visibility_c0,
-       default 0.5: |c| / l, 1 for coincident opposite edges), eps_v
-       (visibility_eps, 0.02), k_v (visibility_kv, 1.5). */
-    size_t visibility_rays;
-    unsigned int visibility_min_samples;
-    float coherence_distance;
-    float visibility_c0, visibility_eps, visibility_kv;
-    unsigned int visibility_flags;  /* MESHFIX_VISIBILITY_* */
-    unsigned int seed;              /* of the ray directions and points; 0 = a fixed default */
-    /* optional: run task(context, i) for i in [0, count), in any order, on
-       any threads; results are the same as without it, bit for bit */
-    void (*parallel_for)(void (*task)(void *context, size_t index), void *context, size_t count, void *user);
-    void *parallel_user;
-    float up[3];                    /* MESHFIX_POLICY_UP axis; 0, 0, 0 = +z */
-    float *patch_confidence;        /* optional out, by patch id: the margin of its verdict, 0 .. 1 */
-    size_t patch_confidence_capacity;
-    /* No evidence, no flip: a vote from rays counts only within
-       mean +- evidence_sigma standard errors (default 3); a patch whose
-       verdict has a confidence below min_confidence (default 0) is left
-       the way most of its area faces ("repair only what is certain"). */
-    float evidence_sigma;
-    float min_confidence;
-    /* Optional normals the file or the engine has (STL facet normals, OBJ
-       vn, glTF NORMAL): evidence for each patch under AUTO, the only one
-       under MESHFIX_POLICY_NORMALS. Per triangle (index_count / 3 of
-       them) or per vertex (vertex_count), x y z floats first; stride 0
-       means 12 bytes. */
-    const float *triangle_normals;
-    size_t triangle_normals_stride;
-    const float *vertex_normals;
-    size_t vertex_normals_stride;
-} meshfix_options;
+/* Optional per-triangle and per-patch results: the caller's arrays, each
+   NULL when not wanted. Written only when the call succeeds. */
+typedef struct meshfix_outputs {
+    unsigned char *flipped;        /* out: index_count / 3 flags, 1 = flipped (orient) */
+    unsigned int *patch_ids;       /* out: index_count / 3 patch ids, 0xFFFFFFFF = degenerate */
+    float *patch_confidence;       /* out: by patch id, the margin of its verdict, 0 .. 1 (orient) */
+    size_t patch_confidence_capacity; /* in: elements of patch_confidence */
+    meshfix_component *components; /* out: the first components_capacity components */
+    size_t components_capacity;    /* in */
+} meshfix_outputs;
 
-#define MESHFIX_VISIBILITY_COHERENCE_ONLY 1u /* merge by coherence alone; sides by majority */
-#define MESHFIX_VISIBILITY_ONLY 2u           /* no merging: each patch to its more visible side */
+/* What happened, in one word (meshfix_summary says it in a line). */
+typedef enum meshfix_verdict {
+    MESHFIX_VERDICT_CLEAN = 0,      /* consistent, facing the policy's way: nothing flipped */
+    MESHFIX_VERDICT_REPAIRED,       /* triangles flipped, every verdict confident */
+    MESHFIX_VERDICT_DOUBTFUL,       /* some patches' verdicts are doubtful (flipped or not) */
+    MESHFIX_VERDICT_NOT_ORIENTABLE, /* a Moebius or Klein part: some edges stay inconsistent */
+    MESHFIX_VERDICT_INCONSISTENT,   /* inspect: inconsistent winding found */
+    MESHFIX_VERDICT_INSIDE_OUT      /* inspect: consistent, but closed patches face inward */
+} meshfix_verdict;
 
-/* What a call found. For meshfix_orient it describes the mesh as returned
-   (edges_inconsistent is what is left after repair); for inspect, the input. */
-typedef struct meshfix_report {
+/* What the mesh is (orient: as returned; inspect: as given). Topology is
+   counted on vertices as options.topology joins them. */
+typedef struct meshfix_mesh_facts {
     size_t triangles;
-    size_t triangles_degenerate;  /* a vertex index repeats: excluded, never flipped */
+    size_t triangles_degenerate;  /* a vertex repeats: excluded, never flipped */
     size_t triangles_zero_area;   /* with positions: zero or non-finite area */
     size_t triangles_duplicate;   /* same three vertices as a lower triangle, any order */
-    size_t triangles_flipped;     /* orient only */
     size_t vertices_used;
+    size_t vertices_joined;       /* used indices that share a vertex with a lower index (topology) */
     size_t vertices_non_finite;   /* used vertices with a NaN or infinite coordinate */
     size_t vertices_non_manifold; /* triangles around it form 2+ fans (bow-tie, or on an edge of 3+) */
     size_t edges;
@@ -324,7 +385,6 @@ typedef struct meshfix_report {
     size_t edges_manifold;        /* 2 triangles */
     size_t edges_non_manifold;    /* 3 or more triangles */
     size_t edges_inconsistent;    /* a direction used by 2+ triangles */
-    size_t edges_inconsistent_input; /* the same count before repair */
     size_t patches;
     size_t patches_closed;
     size_t patches_inside_out;    /* closed patches, wound one way, with clearly negative volume */
@@ -334,31 +394,36 @@ typedef struct meshfix_report {
     long euler_characteristic;    /* sum over components of V - E + F */
     double area;                  /* 0 without positions */
     double signed_volume;         /* over closed orientable patches; 0 without positions */
-    size_t triangles_sdf_disagree; /* SDF: triangles whose own gradient vote disagrees with their patch's */
-    size_t sdf_evaluations;       /* SDF: calls of sdf and sdf_gradient */
-    size_t rays_cast;             /* VISIBILITY: visibility samples */
-    size_t patch_pairs;           /* VISIBILITY: pairs of patches with a coherence */
-    size_t patches_merged;        /* VISIBILITY: merges into super-patches */
-    size_t pairs_conflicting;     /* VISIBILITY: pairs left wound against their coherence */
-    size_t shells_inward;         /* OUTWARD, AUTO: closed shells found to be cavities */
-    /* What decided each patch (AUTO, OUTWARD, VISIBILITY, NORMALS; the
-       others decide by their own rule and count as kept): */
+} meshfix_mesh_facts;
+
+/* What decided the patches (orient). */
+typedef struct meshfix_evidence_counts {
     size_t patches_by_volume;     /* closed or nearly closed: signed volume and nesting */
     size_t patches_by_parity;     /* open: crossings of their own surface or of the shells around them */
     size_t patches_by_visibility; /* rays escaping from one side */
     size_t patches_by_normals;    /* the caller's normals */
-    size_t patches_kept;          /* no significant evidence: left facing the way most of their area faced */
-    size_t patches_doubtful;      /* verdict confidence below 0.5 (or min_confidence when higher) */
-    size_t triangles_doubtful;    /* in those patches */
-} meshfix_report;
+    size_t patches_kept;          /* no significant evidence (or a policy's own rule) */
+    size_t shells_inward;         /* closed shells found to be cavities */
+    size_t rays_cast;
+    size_t patch_pairs;           /* VISIBILITY: pairs of patches with a coherence */
+    size_t patches_merged;        /* VISIBILITY: merges into super-patches */
+    size_t pairs_conflicting;     /* VISIBILITY: pairs left wound against their coherence */
+    size_t sdf_evaluations;       /* SDF: calls of distance and gradient */
+    size_t triangles_sdf_disagree; /* SDF: triangles whose own vote disagrees with their patch's */
+} meshfix_evidence_counts;
 
-/* meshfix_check requirements; 0 means MESHFIX_REQUIRE_CONSISTENT. */
-#define MESHFIX_REQUIRE_CONSISTENT   1u  /* no edge with a direction used twice */
-#define MESHFIX_REQUIRE_CLOSED       2u  /* no boundary edge */
-#define MESHFIX_REQUIRE_MANIFOLD     4u  /* no edge of 3+ triangles, no bow-tie vertex */
-#define MESHFIX_REQUIRE_OUTWARD      8u  /* no closed patch inside-out (needs positions) */
-#define MESHFIX_REQUIRE_NO_DEGENERATE 16u /* no repeated index, zero area or duplicate triangle */
-#define MESHFIX_REQUIRE_SOLID        31u /* all of the above */
+/* Out only: a call writes all of it, or (on error) none of it. */
+typedef struct meshfix_report {
+    meshfix_verdict verdict;
+    size_t triangles_flipped;
+    size_t patches_flipped;
+    size_t patches_doubtful;      /* verdict confidence below 0.5 (or min_confidence when higher) */
+    size_t triangles_doubtful;
+    double area_doubtful;         /* of those patches; 0 without positions */
+    size_t edges_inconsistent_before;
+    meshfix_mesh_facts mesh;
+    meshfix_evidence_counts evidence;
+} meshfix_report;
 
 /* Repair winding.
    Makes every orientable patch consistently wound and turns each patch to
@@ -367,73 +432,81 @@ typedef struct meshfix_report {
    chosen way comes back unchanged with report->triangles_flipped == 0.
    Returns MESHFIX_OK or an error; on error nothing is written.
 
-   destination receives index_count indices; may equal indices; may be NULL
-   to get only the report and the options outputs.
-   indices may be NULL only when index_count is 0.
-   vertex_positions may be NULL for SEED, MAJORITY and AUTO (counts instead
-   of areas); otherwise vertex_count vertices of vertex_positions_stride
-   bytes (a multiple of 4, at least 12), x y z floats first.
-   options and report can be NULL. Without a report (and without
-   options->components) the descriptive counts are skipped, which saves a
-   quarter to a half of the time (make bench). */
-MESHFIX_API meshfix_result meshfix_orient(unsigned int *destination,
-                                          const unsigned int *indices, size_t index_count,
-                                          const float *vertex_positions, size_t vertex_count,
-                                          size_t vertex_positions_stride,
-                                          const meshfix_options *options,
-                                          meshfix_report *report);
+   indices: index_count indices of options->index_size bytes (NULL only
+   when index_count is 0). destination: index_count indices of the same
+   size; may equal indices; NULL for the report and outputs only.
+   positions: vertex_count vertices, x y z of options->position_size bytes
+   each first, `stride` bytes apart (0 = packed); may be NULL for SEED,
+   MAJORITY and AUTO (counts instead of areas). options, report and
+   outputs may be NULL; without a report (and components) the
+   descriptive counts are skipped. */
+MESHFIX_API meshfix_result meshfix_orient(void *destination, const void *indices, size_t index_count,
+                                          const void *positions, size_t vertex_count, size_t stride,
+                                          const meshfix_options *options, meshfix_report *report,
+                                          meshfix_outputs *outputs);
 
-/* Inspect without writing anything but the report.
-   Returns MESHFIX_OK or an error (then report is untouched).
-   Arguments as for meshfix_orient; report must not be NULL. */
-MESHFIX_API meshfix_result meshfix_inspect(const unsigned int *indices, size_t index_count,
-                                           const float *vertex_positions, size_t vertex_count,
-                                           size_t vertex_positions_stride,
-                                           meshfix_report *report);
+/* Inspect without changing anything: the report (required) and outputs
+   (patch_ids, components) describe the mesh as given. Arguments as for
+   meshfix_orient; the policy is not used. */
+MESHFIX_API meshfix_result meshfix_inspect(const void *indices, size_t index_count, const void *positions,
+                                           size_t vertex_count, size_t stride, const meshfix_options *options,
+                                           meshfix_report *report, meshfix_outputs *outputs);
 
-/* meshfix_inspect with options: allocator, scratch, patch_ids and
-   components are used; policy and flipped are ignored. */
-MESHFIX_API meshfix_result meshfix_inspect_ex(const unsigned int *indices, size_t index_count,
-                                              const float *vertex_positions, size_t vertex_count,
-                                              size_t vertex_positions_stride,
-                                              const meshfix_options *options,
-                                              meshfix_report *report);
+/* meshfix_check requirements; 0 means MESHFIX_REQUIRE_CONSISTENT. */
+#define MESHFIX_REQUIRE_CONSISTENT    1u  /* no edge with a direction used twice */
+#define MESHFIX_REQUIRE_CLOSED        2u  /* no boundary edge */
+#define MESHFIX_REQUIRE_MANIFOLD      4u  /* no edge of 3+ triangles, no bow-tie vertex */
+#define MESHFIX_REQUIRE_OUTWARD       8u  /* no closed patch inside-out (needs positions) */
+#define MESHFIX_REQUIRE_NO_DEGENERATE 16u /* no repeated vertex, zero area or duplicate triangle */
+#define MESHFIX_REQUIRE_SOLID         31u /* all of the above */
 
-/* One-line assertion for unit tests.
-   Returns 1 when the mesh is valid input and meets every MESHFIX_REQUIRE_*
-   bit of requirements (0 = MESHFIX_REQUIRE_CONSISTENT), else 0.
-   vertex_positions can be NULL unless OUTWARD or NO_DEGENERATE is asked. */
-MESHFIX_API int meshfix_check(const unsigned int *indices, size_t index_count,
-                              const float *vertex_positions, size_t vertex_count,
-                              size_t vertex_positions_stride, unsigned int requirements);
+/* Why meshfix_check failed: the first requirement (in the order of the
+   bits) that does not hold, where, and how often. */
+typedef struct meshfix_check_failure {
+    meshfix_result result;     /* not MESHFIX_OK: the mesh is not valid input */
+    unsigned int requirement;  /* the MESHFIX_REQUIRE_* bit that failed; 0 when all hold */
+    size_t count;              /* edges, vertices, patches or triangles that fail it */
+    size_t triangle;           /* the lowest triangle that fails it, or (size_t)-1 */
+    unsigned int edge[2];      /* an edge that fails it (vertex indices), or 0xFFFFFFFF twice */
+    char text[200];            /* one line, e.g. "not consistent: 3 edges; edge 12-40 runs 12->40 in
+                                  triangles 7 and 9" */
+} meshfix_check_failure;
+
+/* One-line assertion for unit tests: 1 when the mesh is valid input and
+   meets every bit of `requirements`, else 0 and, when `failure` is not
+   NULL, why. positions may be NULL unless OUTWARD or NO_DEGENERATE is
+   asked; options (formats, topology, memory) may be NULL. */
+MESHFIX_API int meshfix_check(const void *indices, size_t index_count, const void *positions, size_t vertex_count,
+                              size_t stride, unsigned int requirements, const meshfix_options *options,
+                              meshfix_check_failure *failure);
 
 /* Scratch bytes that a call with these options on any mesh of these
-   counts needs at most: the topology (35 bytes per triangle and 4 per
-   vertex) and, for AUTO, OUTWARD and VISIBILITY, the units, trees and
-   rays of the worst mesh of that size (a soup: every triangle its own
-   patch). A call given at least this much in options.scratch allocates
-   nothing. Returns 0 when the counts are too large (the call would return
-   MESHFIX_ERROR_TOO_LARGE) or index_count is 0 (no scratch needed).
-   options can be NULL (the default policy). */
+   counts needs at most (the worst mesh of that size: a soup). A call
+   given that much in options.memory.scratch allocates nothing. Returns 0
+   when the counts are too large or index_count is 0 (nothing needed). */
 MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count, const meshfix_options *options);
 
 /* Weld vertices closer than `tolerance` (0: equal positions, -0 == +0).
    remap[v] becomes the lowest-index vertex that v welds to (v itself for
-   the first of each cluster), so a polygon soup with positions per corner
-   becomes indexed as indices[i] = remap[i], and an indexed mesh as
-   indices[i] = remap[indices[i]]. Deterministic; vertices join the
+   the first of each cluster), so a soup with positions per corner becomes
+   indexed as indices[i] = remap[i]. Deterministic; vertices join the
    earliest representative within the tolerance, so clusters do not chain.
-   Returns MESHFIX_ERROR_NON_FINITE for a NaN or infinite position; on any
-   error remap is not written.
+   Returns MESHFIX_ERROR_NON_FINITE for a NaN or infinite position; on
+   error remap is not written. remap holds vertex_count elements;
+   unique_count may be NULL; options: position_size and memory. */
+MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const void *positions, size_t vertex_count,
+                                        size_t stride, float tolerance, const meshfix_options *options,
+                                        size_t *unique_count);
 
-   remap must hold vertex_count elements; unique_count can be NULL;
-   options: only the allocator is used, NULL is fine. */
-MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex_positions, size_t vertex_count,
-                                        size_t vertex_positions_stride, float tolerance,
-                                        const meshfix_options *options, size_t *unique_count);
+/* A line in plain words for a report, e.g. "fixed 72 triangles in 3
+   patches; 2 patches (1.2% of the area) doubtful", into buffer (always
+   terminated when size > 0). Returns the length of the whole line, as
+   snprintf does. */
+MESHFIX_API size_t meshfix_summary(const meshfix_report *report, char *buffer, size_t size);
 
-/* Returns a static, never NULL, English text for a result code. */
+/* Static, never NULL, English texts. */
 MESHFIX_API const char *meshfix_result_string(meshfix_result result);
+MESHFIX_API const char *meshfix_verdict_string(meshfix_verdict verdict);
 
 #ifdef __cplusplus
 }
@@ -555,8 +628,23 @@ typedef char meshfix__unsigned_int_is_32_bits[sizeof(unsigned int) == 4 ? 1 : -1
 
 /* ===== >>memory ===== */
 
+/* The caller's mesh as given: formats resolved (sizes 2 or 4 and 4 or 8,
+   stride never 0), nothing read yet. */
+typedef struct meshfix__input {
+    const unsigned char *indices;
+    size_t index_count;
+    unsigned int index_size;
+    const unsigned char *positions; /* NULL when not given */
+    size_t vertex_count, stride;
+    unsigned int position_size;
+    int topology;                   /* MESHFIX_TOPOLOGY_*, INDICES without positions */
+    float weld_tolerance;
+} meshfix__input;
+
 typedef struct meshfix__plan {
     size_t mate, work, tri_bits, vertex_work, patch_start, patch_link, patch_bits;
+    size_t corners, remap, weld, points; /* the input stage's (empty when not needed) */
+    size_t weld_buckets;
     size_t total;
 } meshfix__plan;
 
@@ -586,15 +674,37 @@ MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t eleme
    vertex until its bucket links it, and groups patches by component at
    the end. On machines where a fresh page costs microseconds, these bytes
    are most of the time. */
-MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count)
+/* The input stage: corners joined by position (or 16-bit indices widened)
+   need their own indices, the join a welder's arrays, double positions
+   their float copy. */
+MESHFIX__PRIVATE int meshfix__joins_positions(const meshfix__input *in)
 {
-    size_t total = 0, half_edges;
+    return in->positions != NULL && in->topology != MESHFIX_TOPOLOGY_INDICES;
+}
+
+MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count,
+                                        const meshfix__input *in)
+{
+    size_t total = 0, half_edges, buckets = 16, joined, own_corners, points;
     /* vertex_range + 1 must not wrap where size_t has 32 bits */
     if (triangle_count > MESHFIX__MAX_INDEX_COUNT / 3 || vertex_range >= ((size_t)-1) ||
         vertex_range > MESHFIX__MAX_VERTEX_COUNT)
         return 0;
     half_edges = triangle_count * 3;
-    return meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
+    joined = meshfix__joins_positions(in) ? vertex_range : 0;
+    own_corners = joined != 0 || in->index_size == 2 ? half_edges : 0;
+    points = in->positions != NULL && in->position_size == 8 ? vertex_range : 0;
+    while (joined != 0 && buckets < joined)
+        buckets *= 2;
+    plan->weld_buckets = joined != 0 ? buckets : 0;
+    /* the welder: bucket ends, then order, home, rep_head, rep_next per vertex */
+    if (joined > (((size_t)-1) / 4 - buckets) / 4)
+        return 0;
+    return meshfix__add_size(&total, own_corners, 4, &plan->corners) &&
+           meshfix__add_size(&total, joined, 4, &plan->remap) &&
+           meshfix__add_size(&total, joined != 0 ? buckets + 4 * joined : 0, 4, &plan->weld) &&
+           meshfix__add_size(&total, points, 3 * sizeof(float), &plan->points) &&
+           meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
            meshfix__add_size(&total, half_edges + 16, 4, &plan->work) &&
            meshfix__add_size(&total, triangle_count, 2, &plan->tri_bits) &&
            meshfix__add_size(&total, vertex_range + 1, 4, &plan->vertex_work) &&
@@ -604,29 +714,32 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
            meshfix__add_size(&total, 0, 1, &plan->total) && (plan->total = total + 16) > total;
 }
 
-MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_allocator *a, size_t count, size_t size)
+MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_memory_options *a, size_t count, size_t size)
 {
     /* one byte more, so that a zero-size request is not a NULL "failure" */
     if (size != 0 && count > (((size_t)-1) - 1) / size)
         return NULL;
-    return a->alloc_fn != NULL ? a->alloc_fn(count * size + 1, a->user_data) : MESHFIX_MALLOC(count * size + 1, a->user_data);
+    return a->alloc_func != NULL ? a->alloc_func(count * size + 1, a->user_data) : MESHFIX_MALLOC(count * size + 1, a->user_data);
 }
 
 /* The caller's allocator, or the MESHFIX_MALLOC / MESHFIX_FREE defaults
-   (both NULL). */
-MESHFIX__PRIVATE void meshfix__pick_allocator(const meshfix_options *options, meshfix_allocator *allocator)
+   (both NULL); never the scratch. */
+MESHFIX__PRIVATE void meshfix__pick_allocator(const meshfix_options *options, meshfix_memory_options *allocator)
 {
     MESHFIX_MEMSET(allocator, 0, sizeof(*allocator));
-    if (options != NULL && options->allocator.alloc_fn != NULL)
-        *allocator = options->allocator;
+    if (options != NULL && options->memory.alloc_func != NULL) {
+        allocator->alloc_func = options->memory.alloc_func;
+        allocator->free_func = options->memory.free_func;
+        allocator->user_data = options->memory.user_data;
+    }
 }
 
-MESHFIX__PRIVATE void meshfix__release(const meshfix_allocator *a, void *p)
+MESHFIX__PRIVATE void meshfix__release(const meshfix_memory_options *a, void *p)
 {
     if (p == NULL)
         return;
-    if (a->free_fn != NULL)
-        a->free_fn(p, a->user_data);
+    if (a->free_func != NULL)
+        a->free_func(p, a->user_data);
     else
         MESHFIX_FREE(p, a->user_data);
 }
@@ -670,11 +783,13 @@ typedef struct meshfix__edge_entry {
 } meshfix__edge_entry;
 
 typedef struct meshfix__mesh {
-    const unsigned int *indices;
+    const unsigned int *indices;  /* 3 per triangle: vertex ids after the topology (the caller's, or own) */
+    const meshfix__input *input;  /* the caller's indices (written back) and positions */
     size_t triangle_count;
     size_t vertex_range;          /* highest index + 1 */
-    const char *positions;        /* NULL when not given */
+    const char *positions;        /* float x y z; NULL when not given */
     size_t stride;
+    double offset[3];             /* double positions: subtracted before they became floats */
     unsigned int *mate;           /* 3 per triangle */
     unsigned int *work;           /* 3 per triangle: edge buckets, duplicate table, patches */
     unsigned int *queue;          /* triangles in patch order (inside `work`) */
@@ -688,14 +803,18 @@ typedef struct meshfix__mesh {
     size_t patch_count;
     size_t component_count;
     const meshfix_options *options; /* the SDF callbacks; may be NULL */
+    meshfix_outputs *outputs;       /* never NULL (all NULL arrays when not asked) */
+    unsigned int first_non_manifold_vertex; /* the lowest, for meshfix_check; NONE when none */
+    unsigned int requirements;      /* meshfix_check: explain the first that fails into `failure` */
+    meshfix_check_failure *failure;
     int policy;                     /* < 0: inspect */
     float *confidence;              /* per patch, from the geometric policies */
     unsigned char *patch_kind;      /* per patch: MESHFIX__BY_*, from the geometric policies */
 } meshfix__mesh;
 
-/* The last vertex's x y z (12 bytes at (vertex_count - 1) * stride) lie
+/* The last vertex's x y z (`bytes` at (vertex_count - 1) * stride) lie
    within an address range that size_t can describe. */
-MESHFIX__PRIVATE int meshfix__vertices_addressable(size_t vertex_count, size_t stride)
+MESHFIX__PRIVATE int meshfix__vertices_addressable(size_t vertex_count, size_t stride, size_t bytes)
 {
     size_t last;
     if (vertex_count == 0)
@@ -703,45 +822,7 @@ MESHFIX__PRIVATE int meshfix__vertices_addressable(size_t vertex_count, size_t s
     if (vertex_count - 1 > ((size_t)-1) / stride)
         return 0;
     last = (vertex_count - 1) * stride;
-    return last <= ((size_t)-1) - 3 * sizeof(float);
-}
-
-/* Every check that needs no index is made before any index is read: a
-   count the scratch plan cannot hold is refused without touching the
-   buffer it claims to describe. */
-MESHFIX__PRIVATE meshfix_result meshfix__validate(const unsigned int *indices, size_t index_count,
-                                                  const float *positions, size_t vertex_count,
-                                                  size_t stride, size_t *vertex_range, meshfix__plan *plan)
-{
-    size_t i;
-    unsigned int highest = 0;
-    if (index_count % 3 != 0)
-        return MESHFIX_ERROR_NOT_TRIANGLES;
-    if (index_count > MESHFIX__MAX_INDEX_COUNT || vertex_count > MESHFIX__MAX_VERTEX_COUNT)
-        return MESHFIX_ERROR_TOO_LARGE;
-    if (index_count != 0 && indices == NULL)
-        return MESHFIX_ERROR_INVALID_ARGUMENT;
-    if (positions != NULL && (stride < 3 * sizeof(float) || stride % sizeof(float) != 0))
-        return MESHFIX_ERROR_INVALID_ARGUMENT;
-    if (positions != NULL && !meshfix__vertices_addressable(vertex_count, stride))
-        return MESHFIX_ERROR_TOO_LARGE;
-    if (index_count == 0) {
-        *vertex_range = 0;
-        return MESHFIX_OK;
-    }
-    if (!meshfix__make_plan(plan, 0, index_count / 3))
-        return MESHFIX_ERROR_TOO_LARGE;
-    for (i = 0; i < index_count; ++i)
-        highest = indices[i] > highest ? indices[i] : highest;
-    if ((size_t)highest >= vertex_count)
-        return MESHFIX_ERROR_INDEX_OUT_OF_RANGE;
-    *vertex_range = (size_t)highest + 1;
-    return meshfix__make_plan(plan, *vertex_range, index_count / 3) ? MESHFIX_OK : MESHFIX_ERROR_TOO_LARGE;
-}
-
-MESHFIX__PRIVATE const float *meshfix__position(const meshfix__mesh *m, unsigned int vertex)
-{
-    return (const float *)(const void *)(m->positions + (size_t)vertex * m->stride);
+    return last <= ((size_t)-1) - bytes;
 }
 
 /* On the bit pattern, not by arithmetic: -ffast-math and -Ofast let the
@@ -754,10 +835,90 @@ MESHFIX__PRIVATE int meshfix__is_finite(float x)
     return (bits & 0x7F800000u) != 0x7F800000u;
 }
 
+MESHFIX__PRIVATE int meshfix__is_finite_double(double x)
+{
+    /* the word that holds the exponent: where 1.0 has its bits */
+    double one = 1.0;
+    unsigned int bits[2], high;
+    MESHFIX_MEMCPY(bits, &one, sizeof(bits));
+    high = bits[0] != 0 ? 0u : 1u;
+    MESHFIX_MEMCPY(bits, &x, sizeof(bits));
+    return (bits[high] & 0x7FF00000u) != 0x7FF00000u;
+}
+
 MESHFIX__PRIVATE int meshfix__is_finite_point(const float *p)
 {
     return meshfix__is_finite(p[0]) && meshfix__is_finite(p[1]) && meshfix__is_finite(p[2]);
 }
+
+/* The formats of the options, checked: 0 means the default size, stride 0
+   packed x y z. Returns 0 for a size or stride it cannot read. */
+MESHFIX__PRIVATE int meshfix__describe_input(meshfix__input *in, const void *indices, size_t index_count,
+                                            const void *positions, size_t vertex_count, size_t stride,
+                                            const meshfix_options *o)
+{
+    in->indices = (const unsigned char *)indices;
+    in->index_count = index_count;
+    in->index_size = o->index_size == 0 ? 4u : o->index_size;
+    in->positions = (const unsigned char *)positions;
+    in->vertex_count = vertex_count;
+    in->position_size = o->position_size == 0 ? 4u : o->position_size;
+    in->stride = stride != 0 ? stride : 3 * (size_t)in->position_size;
+    in->topology = positions != NULL ? (int)o->topology : (int)MESHFIX_TOPOLOGY_INDICES;
+    in->weld_tolerance = o->weld_tolerance;
+    if ((in->index_size != 2 && in->index_size != 4) || (in->position_size != 4 && in->position_size != 8) ||
+        (unsigned int)o->topology > (unsigned int)MESHFIX_TOPOLOGY_WELD ||
+        !(meshfix__is_finite(o->weld_tolerance) && o->weld_tolerance >= 0.0f))
+        return 0;
+    /* positions are read as floats, or doubles by copy: 4-byte steps */
+    return positions == NULL || (in->stride >= 3 * (size_t)in->position_size && in->stride % 4 == 0);
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__source_index(const meshfix__input *in, size_t i)
+{
+    if (in->index_size == 2)
+        return ((const unsigned short *)(const void *)in->indices)[i];
+    return ((const unsigned int *)(const void *)in->indices)[i];
+}
+
+/* Every check that needs no index is made before any index is read: a
+   count the scratch plan cannot hold is refused without touching the
+   buffer it claims to describe. */
+MESHFIX__PRIVATE meshfix_result meshfix__validate(const meshfix__input *in, size_t *vertex_range,
+                                                  meshfix__plan *plan)
+{
+    size_t i, index_count = in->index_count;
+    unsigned int highest = 0;
+    if (index_count % 3 != 0)
+        return MESHFIX_ERROR_NOT_TRIANGLES;
+    if (index_count > MESHFIX__MAX_INDEX_COUNT || in->vertex_count > MESHFIX__MAX_VERTEX_COUNT)
+        return MESHFIX_ERROR_TOO_LARGE;
+    if (index_count != 0 && in->indices == NULL)
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
+    if (in->positions != NULL &&
+        !meshfix__vertices_addressable(in->vertex_count, in->stride, 3 * (size_t)in->position_size))
+        return MESHFIX_ERROR_TOO_LARGE;
+    if (index_count == 0) {
+        *vertex_range = 0;
+        return MESHFIX_OK;
+    }
+    if (!meshfix__make_plan(plan, 0, index_count / 3, in))
+        return MESHFIX_ERROR_TOO_LARGE;
+    for (i = 0; i < index_count; ++i) {
+        unsigned int v = meshfix__source_index(in, i);
+        highest = v > highest ? v : highest;
+    }
+    if ((size_t)highest >= in->vertex_count)
+        return MESHFIX_ERROR_INDEX_OUT_OF_RANGE;
+    *vertex_range = (size_t)highest + 1;
+    return meshfix__make_plan(plan, *vertex_range, index_count / 3, in) ? MESHFIX_OK : MESHFIX_ERROR_TOO_LARGE;
+}
+
+MESHFIX__PRIVATE const float *meshfix__position(const meshfix__mesh *m, unsigned int vertex)
+{
+    return (const float *)(const void *)(m->positions + (size_t)vertex * m->stride);
+}
+
 
 /* Marks triangles that repeat a vertex (no topology) and, with positions,
    triangles with a NaN or infinite corner (no geometry: every geometric
@@ -850,8 +1011,10 @@ MESHFIX__PRIVATE void meshfix__sort_ids(unsigned int *ids, size_t n, meshfix__be
    and their order. */
 
 typedef struct meshfix__welder {
-    const char *positions;
+    const unsigned char *positions;
     size_t stride;
+    unsigned int position_size; /* 4: float, 8: double */
+    int skip_non_finite;     /* the pipeline's: a NaN or infinite vertex joins nothing */
     double cell;             /* 0: exact equality */
     size_t mask;             /* buckets - 1 */
     unsigned int *bucket_end; /* per bucket: end of its run in `order` */
@@ -861,24 +1024,45 @@ typedef struct meshfix__welder {
     unsigned int *rep_next;  /* per representative: the previous one in its cell */
 } meshfix__welder;
 
-MESHFIX__PRIVATE void meshfix__weld_load(const meshfix__welder *w, size_t v, float p[3])
+/* A vertex's x y z as given, float or double, in double; 0 when one is
+   NaN or infinite. */
+MESHFIX__PRIVATE int meshfix__read_point(const unsigned char *positions, size_t stride, unsigned int size, size_t v,
+                                        double p[3])
 {
-    const float *q = (const float *)(const void *)(w->positions + v * w->stride);
-    int k;
-    for (k = 0; k < 3; ++k)
-        p[k] = q[k] == 0.0f ? 0.0f : q[k]; /* -0 welds to +0 */
+    const unsigned char *q = positions + v * stride;
+    int k, finite = 1;
+    for (k = 0; k < 3; ++k) {
+        if (size == 8) {
+            MESHFIX_MEMCPY(&p[k], q + 8 * k, sizeof(double));
+            finite = finite && meshfix__is_finite_double(p[k]);
+        } else {
+            float x;
+            MESHFIX_MEMCPY(&x, q + 4 * k, sizeof(float));
+            finite = finite && meshfix__is_finite(x);
+            p[k] = (double)x;
+        }
+    }
+    return finite;
 }
 
-MESHFIX__PRIVATE void meshfix__weld_cell(const meshfix__welder *w, const float p[3], double cell[3])
+MESHFIX__PRIVATE void meshfix__weld_load(const meshfix__welder *w, size_t v, double p[3])
+{
+    int k;
+    meshfix__read_point(w->positions, w->stride, w->position_size, v, p);
+    for (k = 0; k < 3; ++k)
+        p[k] = p[k] == 0.0 ? 0.0 : p[k]; /* -0 welds to +0 */
+}
+
+MESHFIX__PRIVATE void meshfix__weld_cell(const meshfix__welder *w, const double p[3], double cell[3])
 {
     int k;
     for (k = 0; k < 3; ++k)
-        cell[k] = w->cell > 0 ? MESHFIX_FLOOR((double)p[k] / w->cell) : (double)p[k];
+        cell[k] = w->cell > 0 ? MESHFIX_FLOOR(p[k] / w->cell) : p[k];
 }
 
 MESHFIX__PRIVATE void meshfix__vertex_cell(const meshfix__welder *w, unsigned int v, double cell[3])
 {
-    float p[3];
+    double p[3];
     meshfix__weld_load(w, v, p);
     meshfix__weld_cell(w, p, cell);
 }
@@ -928,7 +1112,12 @@ MESHFIX__PRIVATE void meshfix__weld_group(meshfix__welder *w, size_t vertex_coun
     double previous[3];
     MESHFIX_MEMSET(w->bucket_end, 0, buckets * sizeof(unsigned int));
     for (v = 0; v < vertex_count; ++v) {
-        double c[3];
+        double c[3], p[3];
+        if (w->skip_non_finite &&
+            !meshfix__read_point(w->positions, w->stride, w->position_size, v, p)) {
+            w->home[v] = MESHFIX__NONE; /* in no bucket */
+            continue;
+        }
         meshfix__vertex_cell(w, (unsigned int)v, c);
         w->home[v] = (unsigned int)meshfix__weld_hash(c, w->mask);
         w->bucket_end[w->home[v]]++;
@@ -939,12 +1128,13 @@ MESHFIX__PRIVATE void meshfix__weld_group(meshfix__welder *w, size_t vertex_coun
         sum += n;
     }
     for (v = 0; v < vertex_count; ++v)
-        w->order[w->bucket_end[w->home[v]]++] = (unsigned int)v;
+        if (w->home[v] != MESHFIX__NONE)
+            w->order[w->bucket_end[w->home[v]]++] = (unsigned int)v;
     for (b = 0; b < buckets; begin = w->bucket_end[b++])
         meshfix__sort_ids(w->order + begin, w->bucket_end[b] - begin, meshfix__weld_before, w);
     /* runs of one cell: each vertex learns where its run starts */
     previous[0] = previous[1] = previous[2] = 0.0;
-    for (i = 0; i < (unsigned int)vertex_count; ++i) {
+    for (i = 0; i < sum; ++i) {
         double c[3];
         meshfix__vertex_cell(w, w->order[i], c);
         if (i == 0 || meshfix__compare_cells(c, previous) != 0)
@@ -954,7 +1144,7 @@ MESHFIX__PRIVATE void meshfix__weld_group(meshfix__welder *w, size_t vertex_coun
         w->home[w->order[i]] = w->rep_head[i];
         previous[0] = c[0], previous[1] = c[1], previous[2] = c[2];
     }
-    for (i = 0; i < (unsigned int)vertex_count; ++i)
+    for (i = 0; i < sum; ++i)
         w->rep_head[i] = MESHFIX__NONE;
 }
 
@@ -980,15 +1170,14 @@ MESHFIX__PRIVATE unsigned int meshfix__weld_find_cell(const meshfix__welder *w, 
 }
 
 /* The lowest representative in the run at `run` within the tolerance of p. */
-MESHFIX__PRIVATE unsigned int meshfix__weld_nearest(const meshfix__welder *w, unsigned int run, const float p[3],
+MESHFIX__PRIVATE unsigned int meshfix__weld_nearest(const meshfix__welder *w, unsigned int run, const double p[3],
                                                    double tolerance_squared, unsigned int best)
 {
     unsigned int r;
     for (r = w->rep_head[run]; r != MESHFIX__NONE; r = w->rep_next[r]) {
-        float q[3];
-        double dx, dy, dz;
+        double q[3], dx, dy, dz;
         meshfix__weld_load(w, r, q);
-        dx = (double)p[0] - (double)q[0], dy = (double)p[1] - (double)q[1], dz = (double)p[2] - (double)q[2];
+        dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
         if (dx * dx + dy * dy + dz * dz <= tolerance_squared && r < best)
             best = r;
     }
@@ -1002,10 +1191,14 @@ MESHFIX__PRIVATE size_t meshfix__weld_run(meshfix__welder *w, size_t vertex_coun
     double tolerance_squared = tolerance * tolerance;
     meshfix__weld_group(w, vertex_count);
     for (v = 0; v < vertex_count; ++v) {
-        float p[3];
-        double c[3], n[3];
+        double p[3], c[3], n[3];
         unsigned int best = MESHFIX__NONE, run;
         int dx, dy, dz;
+        if (w->home[v] == MESHFIX__NONE) { /* skipped: joins nothing */
+            remap[v] = (unsigned int)v;
+            unique++;
+            continue;
+        }
         if (w->cell == 0) {
             /* exact: the first of its run is the lowest vertex at that position */
             remap[v] = w->order[w->home[v]];
@@ -1032,6 +1225,98 @@ MESHFIX__PRIVATE size_t meshfix__weld_run(meshfix__welder *w, size_t vertex_coun
         w->rep_head[w->home[v]] = (unsigned int)v;
     }
     return unique;
+}
+
+/* ===== >>input ===== */
+
+/* What the pipeline reads: 32-bit vertex ids after the topology, and float
+   positions. The caller's buffers serve as they are when they already are
+   that (32-bit indices with TOPOLOGY_INDICES, float positions). */
+
+/* Double positions become floats about the centre of their box, so a
+   model far from the origin keeps its small features. A coordinate
+   beyond float range after that becomes infinite, and its triangles are
+   left out of the geometry like any non-finite one. */
+MESHFIX__PRIVATE void meshfix__convert_points(meshfix__mesh *m, const meshfix__input *in, float *points)
+{
+    double low[3] = {0, 0, 0}, high[3] = {0, 0, 0}, p[3];
+    size_t v;
+    int k, seen = 0;
+    for (v = 0; v < m->vertex_range; ++v) {
+        if (!meshfix__read_point(in->positions, in->stride, 8, v, p))
+            continue;
+        for (k = 0; k < 3; ++k) {
+            low[k] = !seen || p[k] < low[k] ? p[k] : low[k];
+            high[k] = !seen || p[k] > high[k] ? p[k] : high[k];
+        }
+        seen = 1;
+    }
+    for (k = 0; k < 3; ++k)
+        m->offset[k] = 0.5 * low[k] + 0.5 * high[k];
+    for (v = 0; v < m->vertex_range; ++v) {
+        meshfix__read_point(in->positions, in->stride, 8, v, p);
+        for (k = 0; k < 3; ++k)
+            points[3 * v + (size_t)k] = (float)(p[k] - m->offset[k]);
+    }
+    m->positions = (const char *)points;
+    m->stride = 3 * sizeof(float);
+}
+
+/* remap[v]: the lowest vertex whose position is bit-identical to v's (or,
+   with TOPOLOGY_WELD, within the tolerance: meshfix_weld's rule), read
+   from the caller's positions, float or double. A NaN or infinite vertex
+   joins nothing. */
+MESHFIX__PRIVATE void meshfix__join_vertices(const meshfix__mesh *m, const meshfix__input *in,
+                                            const meshfix__plan *plan, unsigned char *block, unsigned int *remap)
+{
+    meshfix__welder w;
+    size_t vertices = m->vertex_range;
+    double tolerance = in->topology == MESHFIX_TOPOLOGY_WELD ? (double)in->weld_tolerance : 0.0;
+    MESHFIX_MEMSET(&w, 0, sizeof(w));
+    w.positions = in->positions;
+    w.stride = in->stride;
+    w.position_size = in->position_size;
+    w.skip_non_finite = 1;
+    w.cell = tolerance * (1.0 + 1e-9);
+    w.mask = plan->weld_buckets - 1;
+    w.bucket_end = (unsigned int *)(void *)(block + plan->weld);
+    w.order = w.bucket_end + plan->weld_buckets;
+    w.home = w.order + vertices;
+    w.rep_head = w.home + vertices;
+    w.rep_next = w.rep_head + vertices;
+    meshfix__weld_run(&w, vertices, tolerance, remap);
+}
+
+/* Sets up m->indices and m->positions from the caller's mesh; returns the
+   used indices that became another vertex (report.mesh.vertices_joined). */
+MESHFIX__PRIVATE size_t meshfix__read_input(meshfix__mesh *m, const meshfix__input *in, const meshfix__plan *plan,
+                                           unsigned char *block)
+{
+    unsigned int *corners = (unsigned int *)(void *)(block + plan->corners);
+    unsigned int *remap = (unsigned int *)(void *)(block + plan->remap), *seen = m->vertex_work;
+    size_t i, joined = 0, index_count = 3 * m->triangle_count;
+    if (in->positions != NULL && in->position_size == 8)
+        meshfix__convert_points(m, in, (float *)(void *)(block + plan->points));
+    if (!meshfix__joins_positions(in)) {
+        if (in->index_size == 4) {
+            m->indices = (const unsigned int *)(const void *)in->indices;
+            return 0;
+        }
+        for (i = 0; i < index_count; ++i)
+            corners[i] = meshfix__source_index(in, i);
+        m->indices = corners;
+        return 0;
+    }
+    meshfix__join_vertices(m, in, plan, block, remap);
+    MESHFIX_MEMSET(seen, 0, m->vertex_range * sizeof(unsigned int));
+    for (i = 0; i < index_count; ++i) {
+        unsigned int v = meshfix__source_index(in, i);
+        corners[i] = remap[v];
+        joined += (size_t)(seen[v] == 0 && remap[v] != v);
+        seen[v] = 1;
+    }
+    m->indices = corners;
+    return joined;
 }
 
 /* ===== >>edges ===== */
@@ -1294,8 +1579,12 @@ MESHFIX__PRIVATE size_t meshfix__count_non_manifold_vertices(meshfix__mesh *m)
                 meshfix__walk_fan(m, t, 3 * t + (corner + 2) % 3, vertex);
         }
     }
-    for (v = 0; v < m->vertex_range; ++v)
-        count += (size_t)(fans[v] > 1);
+    m->first_non_manifold_vertex = MESHFIX__NONE;
+    for (v = m->vertex_range; v-- > 0;)
+        if (fans[v] > 1) {
+            count++;
+            m->first_non_manifold_vertex = (unsigned int)v;
+        }
     return count;
 }
 
@@ -1483,8 +1772,13 @@ MESHFIX__PRIVATE void meshfix__join_components(meshfix__mesh *m)
     for (h = 0; h < half_edges; ++h)
         if (meshfix__is_ring_last(m, h))
             meshfix__walk_ring(m, h);
+    /* each entry's parent is lower than it: in patch order, one step makes
+       every entry its root; then the roots are numbered, and each patch
+       takes its root's number (the root comes first) */
+    for (p = 0; p < m->patch_count; ++p)
+        m->patch_link[p] = m->patch_link[m->patch_link[p]];
     for (p = 0; p < m->patch_count; ++p) {
-        unsigned int root = meshfix__find_root(m->patch_link, p);
+        unsigned int root = m->patch_link[p];
         m->patch_link[p] = root == p ? count++ : m->patch_link[root];
     }
     m->component_count = count;
@@ -1540,9 +1834,9 @@ MESHFIX__PRIVATE int meshfix__sdf_gradient(const meshfix_options *o, const float
                                           size_t *evaluations)
 {
     int axis, finite = 1;
-    if (o->sdf_gradient != NULL) {
+    if (o->sdf.gradient != NULL) {
         float out[3];
-        o->sdf_gradient(p, out, o->sdf_user);
+        o->sdf.gradient(p, out, o->sdf.user);
         (*evaluations)++;
         finite = meshfix__is_finite_point(out);
         g[0] = (double)out[0], g[1] = (double)out[1], g[2] = (double)out[2];
@@ -1551,9 +1845,9 @@ MESHFIX__PRIVATE int meshfix__sdf_gradient(const meshfix_options *o, const float
             float q[3], ahead, behind;
             q[0] = p[0], q[1] = p[1], q[2] = p[2];
             q[axis] = p[axis] + step;
-            ahead = o->sdf(q, o->sdf_user);
+            ahead = o->sdf.distance(q, o->sdf.user);
             q[axis] = p[axis] - step;
-            behind = o->sdf(q, o->sdf_user);
+            behind = o->sdf.distance(q, o->sdf.user);
             finite = finite && meshfix__is_finite(ahead) && meshfix__is_finite(behind);
             g[axis] = (double)ahead - (double)behind;
         }
@@ -1570,11 +1864,12 @@ MESHFIX__PRIVATE int meshfix__sdf_vote(meshfix__mesh *m, unsigned int t, const d
                                       size_t *evaluations)
 {
     const meshfix_options *o = m->options;
-    float centroid[3], step = o->sdf_step;
+    float centroid[3], step = o->sdf.step;
     double g[3], dot;
     int k, vote;
+    /* in the caller's coordinates (double positions were re-centred) */
     for (k = 0; k < 3; ++k)
-        centroid[k] = (float)(origin[k] + (a[k] + b[k] + c[k]) / 3.0);
+        centroid[k] = (float)(m->offset[k] + origin[k] + (a[k] + b[k] + c[k]) / 3.0);
     if (!(step > 0.0f)) {
         double ab = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]);
         double bc = (c[0] - b[0]) * (c[0] - b[0]) + (c[1] - b[1]) * (c[1] - b[1]) + (c[2] - b[2]) * (c[2] - b[2]);
@@ -1619,18 +1914,19 @@ MESHFIX__PRIVATE int meshfix__authored_normal(const meshfix__mesh *m, unsigned i
     unsigned int c;
     int k;
     out[0] = out[1] = out[2] = 0.0;
-    if (o->triangle_normals != NULL) {
-        size_t stride = o->triangle_normals_stride != 0 ? o->triangle_normals_stride : 3 * sizeof(float);
-        const float *n = (const float *)(const void *)((const char *)o->triangle_normals + (size_t)t * stride);
+    if (o->evidence.triangle_normals != NULL) {
+        size_t stride = o->evidence.triangle_normals_stride != 0 ? o->evidence.triangle_normals_stride : 3 * sizeof(float);
+        const float *n = (const float *)(const void *)((const char *)o->evidence.triangle_normals + (size_t)t * stride);
         if (!meshfix__is_finite_point(n))
             return 0;
         for (k = 0; k < 3; ++k)
             out[k] = (double)n[k];
-    } else if (o->vertex_normals != NULL) {
-        size_t stride = o->vertex_normals_stride != 0 ? o->vertex_normals_stride : 3 * sizeof(float);
+    } else if (o->evidence.vertex_normals != NULL) {
+        size_t stride = o->evidence.vertex_normals_stride != 0 ? o->evidence.vertex_normals_stride : 3 * sizeof(float);
         for (c = 0; c < 3; ++c) {
-            const float *n = (const float *)(const void *)((const char *)o->vertex_normals +
-                                                            (size_t)m->indices[3 * t + c] * stride);
+            /* by the caller's index: its normal, not the joined vertex's */
+            size_t v = meshfix__source_index(m->input, 3 * (size_t)t + c);
+            const float *n = (const float *)(const void *)((const char *)o->evidence.vertex_normals + v * stride);
             if (!meshfix__is_finite_point(n))
                 return 0;
             for (k = 0; k < 3; ++k)
@@ -3362,6 +3658,9 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
         int ring;
         meshfix__segment_cells(grid, s, reach, lo, hi);
         meshfix__segment_cells(grid, s, 0.0, inner_lo, inner_hi);
+        /* a segment too long for the grid searches nothing: as if it found
+           nothing within reach (others may still choose it) */
+        s->distance = reach;
         if (!meshfix__cells_usable(lo, hi))
             continue;
         for (ring = 0; ring < 2; ++ring)
@@ -3604,7 +3903,7 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
         longest = meshfix__maxd(longest, (double)g->bvh.high[axis] - (double)g->bvh.low[axis]);
     scale = longest > 0 ? 1.0 / longest : 1.0;
     g->length_unit = (longest > 0 ? longest : 1.0) / g->bvh.scale;
-    reach = o->coherence_distance > 0 ? (double)o->coherence_distance : 0.02;
+    reach = o->visibility.coherence_distance > 0 ? (double)o->visibility.coherence_distance : 0.02;
     for (h = 0; h < half_edges; ++h) {
         boundary += m->mate[h] == MESHFIX__NONE;
         rings += (unsigned int)meshfix__is_ring(m->mate[h]);
@@ -4019,7 +4318,7 @@ MESHFIX__PRIVATE int meshfix__could_turn(const meshfix__unit *u, double w)
 MESHFIX__PRIVATE unsigned int meshfix__ray_cap(const meshfix__geometry *g, const meshfix__unit *u, double total_area)
 {
     const meshfix_options *o = g->o;
-    double budget = o->visibility_rays != 0 ? (double)o->visibility_rays : 1048576.0;
+    double budget = o->visibility.rays != 0 ? (double)o->visibility.rays : 1048576.0;
     double share = total_area > 0 ? budget * u->area / total_area : 0.0;
     share = share < 4 * MESHFIX__BATCH ? 4 * MESHFIX__BATCH : share > 4096 ? 4096 : share;
     return (unsigned int)share;
@@ -4480,8 +4779,8 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     MESHFIX_MEMSET(&merge, 0, sizeof(merge));
     if (!meshfix__measure_coherence(g, &coherence) || !meshfix__alloc_merge(g, &merge, 0))
         goto done;
-    r->patch_pairs += coherence.pair_count;
-    r->patches_merged += meshfix__merge_by_coherence(&merge, coherence.pairs, coherence.pair_count);
+    r->evidence.patch_pairs += coherence.pair_count;
+    r->evidence.patches_merged += meshfix__merge_by_coherence(&merge, coherence.pairs, coherence.pair_count);
     meshfix__number_units(g, &merge);
     if (!meshfix__prepare_units(g))
         goto done;
@@ -4508,7 +4807,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     for (u = 0; u < g->unit_count; ++u) {
         const meshfix__unit *x = &g->units[u];
         meshfix__decide_unit(&g->units[u], g->sigma);
-        r->shells_inward += x->cavity;
+        r->evidence.shells_inward += x->cavity;
         MESHFIX_TRACE(("meshfix: unit %u: area %g, as given %g / %g, volume %g, closed %d, unmatched %g; "
                        "evidence %d: %.3f +- %.3f x %g; turn %u, confidence %.2f%s\n",
                        u, x->area, x->kept, x->reversed, x->volume, (int)x->closed, x->unmatched, (int)x->kind, x->mean,
@@ -4517,7 +4816,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     meshfix__apply_units(g);
     for (u = 0; u < coherence.pair_count; ++u) {
         unsigned int a = meshfix__merge_turn(&merge, coherence.pairs[u].a), b = meshfix__merge_turn(&merge, coherence.pairs[u].b);
-        r->pairs_conflicting += (size_t)(coherence.pairs[u].c * ((a ^ b) ? -1.0 : 1.0) < 0);
+        r->evidence.pairs_conflicting += (size_t)(coherence.pairs[u].c * ((a ^ b) ? -1.0 : 1.0) < 0);
     }
     ok = 1;
 done:
@@ -4531,11 +4830,11 @@ MESHFIX__PRIVATE unsigned int meshfix__visibility_samples(const meshfix__geometr
     const meshfix_options *o = g->o;
     size_t patches = g->m->patch_count, budget, floor_count;
     double area = g->units[p].area;
-    budget = o->visibility_rays != 0 ? o->visibility_rays : patches * 128;
-    if (o->visibility_rays == 0)
+    budget = o->visibility.rays != 0 ? o->visibility.rays : patches * 128;
+    if (o->visibility.rays == 0)
         budget = budget < 65536 ? 65536 : budget > 1048576 ? 1048576 : budget;
     budget /= 2; /* a sample is a pair of rays */
-    floor_count = o->visibility_min_samples != 0 ? o->visibility_min_samples : 16;
+    floor_count = o->visibility.min_samples != 0 ? o->visibility.min_samples : 16;
     if (floor_count > budget / patches)
         floor_count = budget / patches;
     if (!(area > 0) || g->bvh.unit_first[p] == g->bvh.unit_first[p + 1])
@@ -4632,10 +4931,10 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
     int ok = 0;
     MESHFIX_MEMSET(&merge, 0, sizeof(merge));
     MESHFIX_MEMSET(&coherence, 0, sizeof(coherence));
-    k.c0 = o->visibility_c0 > 0 ? (double)o->visibility_c0 : 0.5;
-    k.eps = o->visibility_eps > 0 ? (double)o->visibility_eps : 0.02;
-    k.kv = o->visibility_kv > 0 ? (double)o->visibility_kv : 1.5;
-    k.use_visibility = !(o->visibility_flags & MESHFIX_VISIBILITY_COHERENCE_ONLY);
+    k.c0 = o->visibility.c0 > 0 ? (double)o->visibility.c0 : 0.5;
+    k.eps = o->visibility.eps > 0 ? (double)o->visibility.eps : 0.02;
+    k.kv = o->visibility.kv > 0 ? (double)o->visibility.kv : 1.5;
+    k.use_visibility = !(o->visibility.flags & MESHFIX_VISIBILITY_COHERENCE_ONLY);
     meshfix__number_units(g, NULL);
     if (!meshfix__prepare_units(g) || !meshfix__alloc_merge(g, &merge, 1))
         goto done;
@@ -4662,18 +4961,18 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
                 meshfix__visibility_chunk(&task, c);
     }
     for (p = 0; p < m->patch_count; ++p)
-        r->rays_cast += samples[p];
-    if (!(o->visibility_flags & MESHFIX_VISIBILITY_ONLY)) {
+        r->evidence.rays_cast += samples[p];
+    if (!(o->visibility.flags & MESHFIX_VISIBILITY_ONLY)) {
         if (!meshfix__measure_coherence(g, &coherence))
             goto done;
-        r->patch_pairs += coherence.pair_count;
+        r->evidence.patch_pairs += coherence.pair_count;
         for (i = 0; i < coherence.pair_count; ++i)
-            r->patches_merged += (size_t)meshfix__merge_borodin(&merge, &coherence.pairs[i], &k);
+            r->evidence.patches_merged += (size_t)meshfix__merge_borodin(&merge, &coherence.pairs[i], &k);
     }
     meshfix__visibility_verdicts(g, &merge, samples);
     for (i = 0; i < coherence.pair_count; ++i) {
         unsigned int a = meshfix__merge_turn(&merge, coherence.pairs[i].a), b = meshfix__merge_turn(&merge, coherence.pairs[i].b);
-        r->pairs_conflicting += (size_t)(coherence.pairs[i].c * ((a ^ b) ? -1.0 : 1.0) < 0);
+        r->evidence.pairs_conflicting += (size_t)(coherence.pairs[i].c * ((a ^ b) ? -1.0 : 1.0) < 0);
     }
     ok = 1;
 done:
@@ -4753,7 +5052,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, meshfix__aren
     g.o = m->options;
     g.arena = *arena;
     g.seed = m->options->seed != 0 ? m->options->seed : 0x5EEDu;
-    g.sigma = m->options->evidence_sigma > 0 ? (double)m->options->evidence_sigma : 3.0;
+    g.sigma = m->options->evidence.sigma > 0 ? (double)m->options->evidence.sigma : 3.0;
     m->confidence = (float *)meshfix__take(&g.arena, m->patch_count, sizeof(float));
     m->patch_kind = (unsigned char *)meshfix__take(&g.arena, m->patch_count, 1);
     g.patch_unit = (unsigned int *)meshfix__take(&g.arena, m->patch_count, sizeof(unsigned int));
@@ -4791,13 +5090,14 @@ MESHFIX__PRIVATE size_t meshfix__count_inconsistent(const meshfix__mesh *m, int 
     return count;
 }
 
-MESHFIX__PRIVATE meshfix_component *meshfix__component_out(const meshfix_options *o, unsigned int component)
+MESHFIX__PRIVATE meshfix_component *meshfix__component_out(const meshfix__mesh *m, unsigned int component)
 {
-    return o->components != NULL && component < o->components_capacity ? &o->components[component] : NULL;
+    const meshfix_outputs *out = m->outputs;
+    return out->components != NULL && component < out->components_capacity ? &out->components[component] : NULL;
 }
 
 /* Counts each edge once, for the component of its triangles. */
-MESHFIX__PRIVATE void meshfix__count_component_edges(const meshfix__mesh *m, const meshfix_options *o)
+MESHFIX__PRIVATE void meshfix__count_component_edges(const meshfix__mesh *m)
 {
     unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
     for (h = 0; h < half_edges; ++h) {
@@ -4805,7 +5105,7 @@ MESHFIX__PRIVATE void meshfix__count_component_edges(const meshfix__mesh *m, con
         meshfix_component *c;
         if (m->tri_bits[h / 3] & MESHFIX__TRI_DEGENERATE)
             continue;
-        c = meshfix__component_out(o, m->patch_link[m->tri_patch[h / 3]]);
+        c = meshfix__component_out(m, m->patch_link[m->tri_patch[h / 3]]);
         if (c == NULL)
             continue;
         if (g == MESHFIX__NONE) {
@@ -4823,8 +5123,7 @@ MESHFIX__PRIVATE void meshfix__count_component_edges(const meshfix__mesh *m, con
 /* Distinct vertices per component: patches are grouped by component (a
    counting sort into the free `mate` buffer), then a vertex is counted the
    first time each component touches it. Returns the sum over components. */
-MESHFIX__PRIVATE size_t meshfix__count_component_vertices(meshfix__mesh *m, const meshfix_options *o,
-                                                          meshfix_report *r)
+MESHFIX__PRIVATE size_t meshfix__count_component_vertices(meshfix__mesh *m, meshfix_report *r)
 {
     unsigned int *offsets = m->mate, *order = m->mate + m->component_count + 1, *mark = m->vertex_work;
     unsigned int p, c, i, sum = 0;
@@ -4842,7 +5141,7 @@ MESHFIX__PRIVATE size_t meshfix__count_component_vertices(meshfix__mesh *m, cons
         order[offsets[m->patch_link[p]]++] = p;
     for (c = 0, i = 0; c < m->component_count; ++c) {
         size_t vertices = 0;
-        meshfix_component *out = meshfix__component_out(o, c);
+        meshfix_component *out = meshfix__component_out(m, c);
         for (; i < m->patch_count && m->patch_link[order[i]] == c; ++i) {
             unsigned int q, patch = order[i];
             for (q = m->patch_start[patch]; q < m->patch_start[patch + 1]; ++q) {
@@ -4850,9 +5149,9 @@ MESHFIX__PRIVATE size_t meshfix__count_component_vertices(meshfix__mesh *m, cons
                 int k;
                 for (k = 0; k < 3; ++k) {
                     if (mark[v[k]] == 0) {
-                        r->vertices_used++;
+                        r->mesh.vertices_used++;
                         if (m->positions != NULL)
-                            r->vertices_non_finite += (size_t)!meshfix__is_finite_point(meshfix__position(m, v[k]));
+                            r->mesh.vertices_non_finite += (size_t)!meshfix__is_finite_point(meshfix__position(m, v[k]));
                     }
                     if (mark[v[k]] != c + 1) {
                         mark[v[k]] = c + 1;
@@ -4898,9 +5197,9 @@ MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned
     int has_vote = (bits & (MESHFIX__TRI_VOTE_IN | MESHFIX__TRI_VOTE_OUT)) != 0;
     unsigned int own_flip = (bits & MESHFIX__TRI_VOTE_IN) ? 1u : 0u;
     if (has_vote && own_flip != patch_flip)
-        r->triangles_sdf_disagree++;
+        r->evidence.triangles_sdf_disagree++;
     /* the plain rule: a triangle with no vote (zero area, no gradient) stays as given */
-    return m->options->sdf_mode == MESHFIX_SDF_PER_TRIANGLE ? own_flip : patch_flip;
+    return m->options->sdf.mode == MESHFIX_SDF_PER_TRIANGLE ? own_flip : patch_flip;
 }
 
 /* The verdict of patch p: the geometric policies decided it per unit
@@ -4911,7 +5210,7 @@ MESHFIX__PRIVATE void meshfix__patch_verdict(const meshfix__mesh *m, unsigned in
                                             const meshfix__patch_sums *s, meshfix__unit *u)
 {
     const meshfix_options *o = m->options;
-    double sigma = o->evidence_sigma > 0 ? (double)o->evidence_sigma : 3.0;
+    double sigma = o->evidence.sigma > 0 ? (double)o->evidence.sigma : 3.0;
     if (m->patch_bits[p] & MESHFIX__PATCH_DECIDED) {
         meshfix__patch_unit(s, u);
         u->turn = (m->patch_bits[p] & MESHFIX__PATCH_FLIP) != 0;
@@ -4920,23 +5219,24 @@ MESHFIX__PRIVATE void meshfix__patch_verdict(const meshfix__mesh *m, unsigned in
     } else {
         meshfix__decide_patch(m, policy, s, sigma, u);
     }
-    if (u->confidence < o->min_confidence) {
+    if (u->confidence < o->evidence.min_confidence) {
         u->turn = s->weight_kept < s->weight_reversed;
         u->kind = MESHFIX__BY_NOTHING;
     }
 }
 
-MESHFIX__PRIVATE void meshfix__count_verdict(const meshfix__unit *u, size_t triangles, double doubtful,
+MESHFIX__PRIVATE void meshfix__count_verdict(const meshfix__unit *u, size_t triangles, double area, double doubtful,
                                             meshfix_report *r)
 {
-    r->patches_by_volume += u->kind == MESHFIX__BY_VOLUME;
-    r->patches_by_parity += u->kind == MESHFIX__BY_PARITY;
-    r->patches_by_visibility += u->kind == MESHFIX__BY_ESCAPE;
-    r->patches_by_normals += u->kind == MESHFIX__BY_NORMALS;
-    r->patches_kept += u->kind == MESHFIX__BY_NOTHING || u->kind == MESHFIX__BY_POLICY;
+    r->evidence.patches_by_volume += u->kind == MESHFIX__BY_VOLUME;
+    r->evidence.patches_by_parity += u->kind == MESHFIX__BY_PARITY;
+    r->evidence.patches_by_visibility += u->kind == MESHFIX__BY_ESCAPE;
+    r->evidence.patches_by_normals += u->kind == MESHFIX__BY_NORMALS;
+    r->evidence.patches_kept += u->kind == MESHFIX__BY_NOTHING || u->kind == MESHFIX__BY_POLICY;
     if ((double)u->confidence < doubtful) {
         r->patches_doubtful++;
         r->triangles_doubtful += triangles;
+        r->area_doubtful += area;
     }
 }
 
@@ -4950,17 +5250,18 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
     for (p = 0; p < m->patch_count; ++p) {
         meshfix__patch_sums s;
         unsigned int i, turn = 0, bits = m->patch_bits[p];
+        size_t flipped = 0;
         double volume;
-        meshfix_component *out = meshfix__component_out(o, m->patch_link[p]);
+        meshfix_component *out = meshfix__component_out(m, m->patch_link[p]);
         meshfix__sum_patch(m, p, &s);
-        r->sdf_evaluations += s.sdf_evaluations;
+        r->evidence.sdf_evaluations += s.sdf_evaluations;
         if (policy >= 0) {
             meshfix__unit verdict;
             meshfix__patch_verdict(m, p, policy, &s, &verdict);
-            meshfix__count_verdict(&verdict, m->patch_start[p + 1] - m->patch_start[p],
-                                   meshfix__maxd(0.5, (double)o->min_confidence), r);
-            if (o->patch_confidence != NULL && p < o->patch_confidence_capacity)
-                o->patch_confidence[p] = verdict.confidence;
+            meshfix__count_verdict(&verdict, m->patch_start[p + 1] - m->patch_start[p], s.area,
+                                   meshfix__maxd(0.5, (double)o->evidence.min_confidence), r);
+            if (m->outputs->patch_confidence != NULL && p < m->outputs->patch_confidence_capacity)
+                m->outputs->patch_confidence[p] = verdict.confidence;
             turn = verdict.turn;
             for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
                 unsigned int t = m->queue[i];
@@ -4968,26 +5269,28 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
                 if (policy == MESHFIX_POLICY_SDF)
                     flip = meshfix__sdf_flip(m, t, flip, r);
                 m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | (flip ? MESHFIX__TRI_FLIP : 0u));
-                r->triangles_flipped += flip;
+                flipped += flip;
             }
+            r->triangles_flipped += flipped;
+            r->patches_flipped += (size_t)(flipped != 0);
         }
         volume = policy < 0 ? s.volume_given : turn ? -s.volume_relative : s.volume_relative;
         if (!meshfix__is_closed_orientable(m, p))
             volume = 0.0;
-        r->triangles_zero_area += s.zero_area;
-        r->area += s.area;
-        r->signed_volume += volume;
-        r->patches_closed += (size_t)!(bits & MESHFIX__PATCH_OPEN);
+        r->mesh.triangles_zero_area += s.zero_area;
+        r->mesh.area += s.area;
+        r->mesh.signed_volume += volume;
+        r->mesh.patches_closed += (size_t)!(bits & MESHFIX__PATCH_OPEN);
         /* inside-out only means something for a patch wound one way throughout */
         if (policy >= 0 || s.reversed == 0)
-            r->patches_inside_out += (size_t)(volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area));
+            r->mesh.patches_inside_out += (size_t)(volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area));
         if (out != NULL)
             meshfix__add_patch_to_component(m, p, &s, volume, out);
         m->component_bits[m->patch_link[p]] |= (unsigned char)bits;
     }
     for (c = 0; c < m->component_count; ++c) {
-        r->components_closed += (size_t)!(m->component_bits[c] & MESHFIX__PATCH_NOT_MANIFOLD);
-        r->components_non_orientable += (size_t)((m->component_bits[c] & MESHFIX__PATCH_NON_ORIENTABLE) != 0);
+        r->mesh.components_closed += (size_t)!(m->component_bits[c] & MESHFIX__PATCH_NOT_MANIFOLD);
+        r->mesh.components_non_orientable += (size_t)((m->component_bits[c] & MESHFIX__PATCH_NON_ORIENTABLE) != 0);
     }
 }
 
@@ -5009,17 +5312,18 @@ MESHFIX__PRIVATE void meshfix__debug_check_orientation(const meshfix__mesh *m)
 /* ===== >>pipeline ===== */
 
 MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, const meshfix__plan *plan,
-                                    const unsigned int *indices, size_t index_count, const float *positions,
-                                    size_t stride, size_t vertex_range, const meshfix_options *options, int policy)
+                                    const meshfix__input *in, size_t vertex_range, const meshfix_options *options,
+                                    meshfix_outputs *outputs, int policy)
 {
     MESHFIX_MEMSET(m, 0, sizeof(*m));
     m->options = options;
+    m->outputs = outputs;
     m->policy = policy;
-    m->indices = indices;
-    m->triangle_count = index_count / 3;
+    m->input = in;
+    m->triangle_count = in->index_count / 3;
     m->vertex_range = vertex_range;
-    m->positions = (const char *)positions;
-    m->stride = stride;
+    m->positions = (const char *)in->positions;
+    m->stride = in->stride;
     m->mate = (unsigned int *)(void *)(block + plan->mate);
     m->work = (unsigned int *)(void *)(block + plan->work);
     m->queue = m->work;
@@ -5043,36 +5347,40 @@ MESHFIX__PRIVATE int meshfix__needs_geometry(const meshfix__mesh *m, int policy)
     return m->patch_count > 1 || (m->patch_count == 1 && !meshfix__is_closed_orientable(m, 0));
 }
 
+/* meshfix_check's explanation (>>check) */
+MESHFIX__PRIVATE void meshfix__explain(meshfix__mesh *m, const meshfix_report *r, unsigned int requirements,
+                                      meshfix_check_failure *f);
+
 /* Stages 2 to 5 on a bound mesh; fills r and the component outputs. The
    counts that only describe the mesh (duplicates, non-manifold vertices,
    inconsistent edges, Euler characteristic) are skipped when `full` is 0:
    the caller asked for neither a report nor components. */
 MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, const meshfix_options *o, int full,
-                                                 const meshfix_allocator *allocator, meshfix__arena *rest,
+                                                 const meshfix_memory_options *allocator, meshfix__arena *rest,
                                                  meshfix_report *r)
 {
     meshfix__edge_counts edges;
     unsigned char *own = NULL;
     size_t c, n;
 
-    r->triangles_degenerate = meshfix__mark_degenerate(m);
+    r->mesh.triangles_degenerate = meshfix__mark_degenerate(m);
     meshfix__build_edges(m, &edges);
-    r->edges = edges.edges;
-    r->edges_boundary = edges.boundary;
-    r->edges_manifold = edges.manifold;
-    r->edges_non_manifold = edges.non_manifold;
+    r->mesh.edges = edges.edges;
+    r->mesh.edges_boundary = edges.boundary;
+    r->mesh.edges_manifold = edges.manifold;
+    r->mesh.edges_non_manifold = edges.non_manifold;
     if (full) {
-        r->triangles_duplicate = meshfix__count_duplicates(m);
-        r->edges_inconsistent_input = meshfix__count_inconsistent(m, 0);
-        r->vertices_non_manifold = meshfix__count_non_manifold_vertices(m);
+        r->mesh.triangles_duplicate = meshfix__count_duplicates(m);
+        r->edges_inconsistent_before = meshfix__count_inconsistent(m, 0);
+        r->mesh.vertices_non_manifold = meshfix__count_non_manifold_vertices(m);
     }
 
     meshfix__find_patches(m);
     meshfix__join_components(m);
-    r->patches = m->patch_count;
-    r->components = m->component_count;
+    r->mesh.patches = m->patch_count;
+    r->mesh.components = m->component_count;
 
-    n = o->components != NULL ? o->components_capacity : 0;
+    n = m->outputs->components != NULL ? m->outputs->components_capacity : 0;
     n = m->component_count < n ? m->component_count : n;
     if (meshfix__needs_geometry(m, policy)) {
         /* units, trees and rays: the rest of the caller's scratch, or a
@@ -5105,35 +5413,46 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
         }
     }
     if (n != 0)
-        MESHFIX_MEMSET(o->components, 0, n * sizeof(meshfix_component));
+        MESHFIX_MEMSET(m->outputs->components, 0, n * sizeof(meshfix_component));
     meshfix__orient_patches(m, policy, o, r);
     meshfix__release(allocator, own);
     m->confidence = NULL;
     m->patch_kind = NULL;
 #ifdef MESHFIX_DEBUG
     /* the plain per-triangle SDF rule does not promise consistency */
-    if (policy >= 0 && !(policy == MESHFIX_POLICY_SDF && o->sdf_mode == MESHFIX_SDF_PER_TRIANGLE))
+    if (policy >= 0 && !(policy == MESHFIX_POLICY_SDF && o->sdf.mode == MESHFIX_SDF_PER_TRIANGLE))
         meshfix__debug_check_orientation(m);
 #endif
     if (!full)
         return MESHFIX_OK;
-    r->edges_inconsistent = policy >= 0 ? meshfix__count_inconsistent(m, 1) : r->edges_inconsistent_input;
-    meshfix__count_component_edges(m, o);
-    r->euler_characteristic = (long)meshfix__count_component_vertices(m, o, r) - (long)r->edges +
-                              (long)(r->triangles - r->triangles_degenerate);
-    for (c = 0; c < n; ++c)
-        o->components[c].euler_characteristic = (long)o->components[c].vertices - (long)o->components[c].edges +
-                                                (long)o->components[c].triangles;
+    r->mesh.edges_inconsistent = policy >= 0 ? meshfix__count_inconsistent(m, 1) : r->edges_inconsistent_before;
+    meshfix__count_component_edges(m);
+    /* while `mate` still links the edges (the vertex count reuses it) */
+    if (m->failure != NULL)
+        meshfix__explain(m, r, m->requirements, m->failure);
+    r->mesh.euler_characteristic = (long)meshfix__count_component_vertices(m, r) - (long)r->mesh.edges +
+                              (long)(r->mesh.triangles - r->mesh.triangles_degenerate);
+    for (c = 0; c < n; ++c) {
+        meshfix_component *k = &m->outputs->components[c];
+        k->euler_characteristic = (long)k->vertices - (long)k->edges + (long)k->triangles;
+    }
     return MESHFIX_OK;
 }
 
-MESHFIX__PRIVATE void meshfix__write_triangle(const meshfix__mesh *m, size_t t, unsigned int *destination)
+/* The caller's triangle t, its last two corners swapped when it flips. */
+MESHFIX__PRIVATE void meshfix__write_triangle(const meshfix__mesh *m, size_t t, unsigned char *destination)
 {
-    unsigned int a = m->indices[3 * t], b = m->indices[3 * t + 1], c = m->indices[3 * t + 2];
+    const meshfix__input *in = m->input;
+    unsigned int a = meshfix__source_index(in, 3 * t), b = meshfix__source_index(in, 3 * t + 1);
+    unsigned int c = meshfix__source_index(in, 3 * t + 2);
     int flip = (m->tri_bits[t] & MESHFIX__TRI_FLIP) != 0;
-    destination[3 * t] = a;
-    destination[3 * t + 1] = flip ? c : b;
-    destination[3 * t + 2] = flip ? b : c;
+    if (in->index_size == 2) {
+        unsigned short *d = (unsigned short *)(void *)destination + 3 * t;
+        d[0] = (unsigned short)a, d[1] = (unsigned short)(flip ? c : b), d[2] = (unsigned short)(flip ? b : c);
+    } else {
+        unsigned int *d = (unsigned int *)(void *)destination + 3 * t;
+        d[0] = a, d[1] = flip ? c : b, d[2] = flip ? b : c;
+    }
 }
 
 /* Each triangle is read whole before it is written, and each output
@@ -5142,10 +5461,10 @@ MESHFIX__PRIVATE void meshfix__write_triangle(const meshfix__mesh *m, size_t t, 
    anywhere (equal, or shifted by any amount) never overwrites an index
    before it is read. The addresses are compared as integers: the two
    pointers may belong to different arrays. */
-MESHFIX__PRIVATE void meshfix__write_indices(const meshfix__mesh *m, unsigned int *destination)
+MESHFIX__PRIVATE void meshfix__write_indices(const meshfix__mesh *m, unsigned char *destination)
 {
     size_t t;
-    if ((size_t)destination <= (size_t)m->indices)
+    if ((size_t)destination <= (size_t)m->input->indices)
         for (t = 0; t < m->triangle_count; ++t)
             meshfix__write_triangle(m, t, destination);
     else
@@ -5153,15 +5472,16 @@ MESHFIX__PRIVATE void meshfix__write_indices(const meshfix__mesh *m, unsigned in
             meshfix__write_triangle(m, t, destination);
 }
 
-MESHFIX__PRIVATE void meshfix__write_triangle_outputs(const meshfix__mesh *m, const meshfix_options *o, int policy)
+MESHFIX__PRIVATE void meshfix__write_triangle_outputs(const meshfix__mesh *m, int policy)
 {
+    const meshfix_outputs *out = m->outputs;
     size_t t;
-    if (o->flipped != NULL && policy >= 0)
+    if (out->flipped != NULL && policy >= 0)
         for (t = 0; t < m->triangle_count; ++t)
-            o->flipped[t] = (unsigned char)meshfix__flip_of(m, (unsigned int)t);
-    if (o->patch_ids != NULL)
+            out->flipped[t] = (unsigned char)meshfix__flip_of(m, (unsigned int)t);
+    if (out->patch_ids != NULL)
         for (t = 0; t < m->triangle_count; ++t)
-            o->patch_ids[t] = m->tri_patch[t];
+            out->patch_ids[t] = m->tri_patch[t];
 }
 
 /* Option values outside their documented ranges are refused, not
@@ -5174,168 +5494,522 @@ MESHFIX__PRIVATE int meshfix__is_fraction(float x, float most)
     return meshfix__is_finite(x) && x >= 0.0f && x <= most;
 }
 
+/* A normals stride: 0 (12 bytes), or whole floats, at least three. */
+MESHFIX__PRIVATE int meshfix__stride_valid(size_t stride)
+{
+    return stride == 0 || (stride >= 3 * sizeof(float) && stride % sizeof(float) == 0);
+}
+
 MESHFIX__PRIVATE int meshfix__options_valid(const meshfix_options *o, int policy)
 {
     if (policy == MESHFIX_POLICY_SDF &&
-        (o->sdf == NULL || (unsigned int)o->sdf_mode > (unsigned int)MESHFIX_SDF_PER_TRIANGLE))
+        (o->sdf.distance == NULL || (unsigned int)o->sdf.mode > (unsigned int)MESHFIX_SDF_PER_TRIANGLE))
         return 0;
-    if (o->allocator.alloc_fn != NULL && o->allocator.free_fn == NULL)
+    if (o->memory.alloc_func != NULL && o->memory.free_func == NULL)
         return 0;
-    return o->visibility_rays <= MESHFIX__MAX_RAYS && o->visibility_min_samples <= MESHFIX__MAX_MIN_SAMPLES &&
-           meshfix__is_fraction(o->coherence_distance, 1.0f) && meshfix__is_fraction(o->visibility_c0, 1e6f) &&
-           meshfix__is_fraction(o->visibility_eps, 1.0f) && meshfix__is_fraction(o->visibility_kv, 1e6f) &&
-           meshfix__is_fraction(o->sdf_step, 3e38f) && meshfix__is_finite_point(o->up);
+    if (!meshfix__stride_valid(o->evidence.triangle_normals_stride) ||
+        !meshfix__stride_valid(o->evidence.vertex_normals_stride))
+        return 0;
+    return o->visibility.rays <= MESHFIX__MAX_RAYS && o->visibility.min_samples <= MESHFIX__MAX_MIN_SAMPLES &&
+           meshfix__is_fraction(o->evidence.sigma, 1e6f) && meshfix__is_fraction(o->evidence.min_confidence, 1.0f) &&
+           meshfix__is_fraction(o->visibility.coherence_distance, 1.0f) && meshfix__is_fraction(o->visibility.c0, 1e6f) &&
+           meshfix__is_fraction(o->visibility.eps, 1.0f) && meshfix__is_fraction(o->visibility.kv, 1e6f) &&
+           meshfix__is_fraction(o->sdf.step, 3e38f) && meshfix__is_finite_point(o->up);
 }
 
-/* The pipeline shared by orient and inspect (policy < 0). Outputs are
-   written only after every check has passed and the work is done. */
-MESHFIX__PRIVATE meshfix_result meshfix__run(unsigned int *destination, const unsigned int *indices,
-                                             size_t index_count, const float *positions,
-                                             size_t vertex_count, size_t stride,
-                                             const meshfix_options *caller_options, int policy,
-                                             meshfix_report *report)
+MESHFIX__PRIVATE meshfix_verdict meshfix__verdict(const meshfix_report *r, int policy)
 {
-    meshfix_allocator allocator;
+    if (r->mesh.components_non_orientable != 0)
+        return MESHFIX_VERDICT_NOT_ORIENTABLE;
+    if (policy < 0)
+        return r->mesh.edges_inconsistent != 0  ? MESHFIX_VERDICT_INCONSISTENT
+               : r->mesh.patches_inside_out != 0 ? MESHFIX_VERDICT_INSIDE_OUT
+                                                  : MESHFIX_VERDICT_CLEAN;
+    if (r->patches_doubtful != 0)
+        return MESHFIX_VERDICT_DOUBTFUL;
+    return r->triangles_flipped != 0 ? MESHFIX_VERDICT_REPAIRED : MESHFIX_VERDICT_CLEAN;
+}
+
+/* The state of a call: the caller's arguments, resolved, and what
+   meshfix_check wants to know beyond the report. */
+typedef struct meshfix__call {
+    void *destination;
+    meshfix__input input;
+    int policy;                      /* < 0: inspect */
+    meshfix_report *report;
+    meshfix_outputs *outputs;
+    unsigned int requirements;       /* meshfix_check: explain the first that fails */
+    meshfix_check_failure *failure;
+} meshfix__call;
+
+/* The pipeline shared by orient, inspect (policy < 0) and check. Outputs
+   are written only after every check has passed and the work is done. */
+MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call, const meshfix_options *caller_options)
+{
+    meshfix_memory_options allocator;
     meshfix__plan plan;
     meshfix__mesh m;
     meshfix_report r;
     meshfix_options options;
+    meshfix_outputs outputs;
     meshfix__arena rest;
     unsigned char *raw, *block;
-    size_t vertex_range = 0, topology;
+    size_t vertex_range = 0, topology, joined;
+    int policy = call->policy, full;
+    const meshfix__input *in = &call->input;
     meshfix_result result;
 
-    /* a copy: NULL means all zero, and the report may share memory with
-       the caller's options (it is written last, after every read) */
+    /* copies: NULL means all zero, and the report may share memory with
+       the caller's options or outputs (it is written last) */
     if (caller_options != NULL)
         options = *caller_options;
     else
         MESHFIX_MEMSET(&options, 0, sizeof(options));
+    if (call->outputs != NULL)
+        outputs = *call->outputs;
+    else
+        MESHFIX_MEMSET(&outputs, 0, sizeof(outputs));
 
     /* 1. validate, before touching anything */
-    result = meshfix__validate(indices, index_count, positions, vertex_count, stride, &vertex_range, &plan);
+    result = meshfix__validate(in, &vertex_range, &plan);
     if (result != MESHFIX_OK)
         return result;
-    if (policy == MESHFIX_POLICY_AUTO && positions == NULL)
+    if (policy == MESHFIX_POLICY_AUTO && in->positions == NULL)
         policy = MESHFIX_POLICY_MAJORITY;
     if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_SDF || policy == MESHFIX_POLICY_VISIBILITY ||
-         policy == MESHFIX_POLICY_UP) && positions == NULL)
+         policy == MESHFIX_POLICY_UP) && in->positions == NULL)
         return MESHFIX_ERROR_POSITIONS_REQUIRED;
     if (!meshfix__options_valid(&options, policy))
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     MESHFIX_MEMSET(&r, 0, sizeof(r));
-    r.triangles = index_count / 3;
-    if (index_count == 0) {
-        if (report != NULL)
-            *report = r;
+    r.mesh.triangles = in->index_count / 3;
+    if (in->index_count == 0) {
+        if (call->failure != NULL)
+            meshfix__explain(NULL, &r, call->requirements, call->failure);
+        if (call->report != NULL)
+            *call->report = r;
         return MESHFIX_OK;
     }
 
     /* one block holds all scratch: the caller's, or a single allocation */
     meshfix__pick_allocator(&options, &allocator);
-    if (options.scratch != NULL) {
-        if (options.scratch_size < plan.total)
+    if (options.memory.scratch != NULL) {
+        if (options.memory.scratch_size < plan.total)
             return MESHFIX_ERROR_SCRATCH_TOO_SMALL;
-        raw = (unsigned char *)options.scratch;
+        raw = (unsigned char *)options.memory.scratch;
     } else {
-        raw = (unsigned char *)(allocator.alloc_fn != NULL ? allocator.alloc_fn(plan.total, allocator.user_data)
-                                                           : MESHFIX_MALLOC(plan.total, allocator.user_data));
+        raw = (unsigned char *)(allocator.alloc_func != NULL ? allocator.alloc_func(plan.total, allocator.user_data)
+                                                             : MESHFIX_MALLOC(plan.total, allocator.user_data));
         if (raw == NULL)
             return MESHFIX_ERROR_OUT_OF_MEMORY;
     }
     block = raw + (16u - (size_t)raw % 16u) % 16u;
-    meshfix__bind(&m, block, &plan, indices, index_count, positions, stride, vertex_range, &options, policy);
+    meshfix__bind(&m, block, &plan, in, vertex_range, &options, &outputs, policy);
+    m.requirements = call->requirements;
+    m.failure = call->failure;
     /* what the caller's scratch holds beyond the topology: the geometry's */
     MESHFIX_MEMSET(&rest, 0, sizeof(rest));
     topology = (size_t)(block - raw) + ((plan.total - 16 + 15) & ~(size_t)15);
-    if (options.scratch != NULL) {
+    if (options.memory.scratch != NULL) {
         rest.base = raw + topology;
-        rest.size = options.scratch_size > topology ? options.scratch_size - topology : 0;
+        rest.size = options.memory.scratch_size > topology ? options.memory.scratch_size - topology : 0;
     }
 
-    /* 2-5. edges, patches, components, policy */
-    result = meshfix__analyze(&m, policy, &options, report != NULL || options.components != NULL, &allocator, &rest,
-                              &r);
+    /* 2. input: vertex ids after the topology, float positions */
+    joined = meshfix__read_input(&m, in, &plan, block);
 
-    /* 6. write: nothing can fail from here on */
+    /* 3-6. edges, patches, components, policy */
+    full = call->report != NULL || outputs.components != NULL || call->failure != NULL;
+    result = meshfix__analyze(&m, policy, &options, full, &allocator, &rest, &r);
+
+    /* 7. write: nothing can fail from here on */
     if (result == MESHFIX_OK) {
-        if (destination != NULL && policy >= 0)
-            meshfix__write_indices(&m, destination);
-        meshfix__write_triangle_outputs(&m, &options, policy);
-        if (report != NULL)
-            *report = r;
+        r.mesh.vertices_joined = joined;
+        r.verdict = meshfix__verdict(&r, policy);
+        if (call->destination != NULL && policy >= 0)
+            meshfix__write_indices(&m, (unsigned char *)call->destination);
+        meshfix__write_triangle_outputs(&m, policy);
+        if (call->report != NULL)
+            *call->report = r;
     }
-    if (raw != (unsigned char *)options.scratch)
+    if (raw != (unsigned char *)options.memory.scratch)
         meshfix__release(&allocator, raw);
     return result;
 }
 
+/* ===== >>check ===== */
+
+/* A line of text in a caller's buffer: written as far as it fits (always
+   terminated), its whole length counted, as snprintf would (which C89 and
+   freestanding builds do not have). */
+typedef struct meshfix__line {
+    char *buffer;
+    size_t size, length;
+} meshfix__line;
+
+MESHFIX__PRIVATE void meshfix__say(meshfix__line *l, const char *text)
+{
+    for (; *text != '\0'; ++text, ++l->length)
+        if (l->length + 1 < l->size)
+            l->buffer[l->length] = *text;
+    if (l->size != 0)
+        l->buffer[l->length + 1 < l->size ? l->length : l->size - 1] = '\0';
+}
+
+MESHFIX__PRIVATE void meshfix__say_number(meshfix__line *l, size_t n)
+{
+    char digits[24];
+    int i = (int)sizeof(digits) - 1;
+    digits[i] = '\0';
+    do {
+        digits[--i] = (char)('0' + (int)(n % 10));
+        n /= 10;
+    } while (n != 0);
+    meshfix__say(l, digits + i);
+}
+
+/* "1 patch", "3 patches" */
+MESHFIX__PRIVATE void meshfix__say_count(meshfix__line *l, size_t n, const char *one, const char *many)
+{
+    meshfix__say_number(l, n);
+    meshfix__say(l, " ");
+    meshfix__say(l, n == 1 ? one : many);
+}
+
+/* a share as a percentage with one decimal: "1.2%" */
+MESHFIX__PRIVATE void meshfix__say_percent(meshfix__line *l, double share)
+{
+    size_t tenths = (size_t)(share * 1000.0 + 0.5);
+    char decimal[3];
+    meshfix__say_number(l, tenths / 10);
+    decimal[0] = '.', decimal[1] = (char)('0' + (int)(tenths % 10)), decimal[2] = '\0';
+    meshfix__say(l, decimal);
+    meshfix__say(l, "%");
+}
+
+MESHFIX__PRIVATE void meshfix__say_edge(meshfix__line *l, const unsigned int ends[2])
+{
+    meshfix__say(l, "edge ");
+    meshfix__say_number(l, ends[0]);
+    meshfix__say(l, "-");
+    meshfix__say_number(l, ends[1]);
+}
+
+/* meshfix_check's explanation: the first requirement that fails, the
+   lowest triangle (or edge, vertex, patch) that fails it, in one line. */
+
+MESHFIX__PRIVATE void meshfix__edge_ends(const meshfix__mesh *m, unsigned int h, unsigned int ends[2])
+{
+    unsigned int a = m->indices[h], b = m->indices[h % 3 == 2 ? h - 2 : h + 1];
+    ends[0] = a < b ? a : b;
+    ends[1] = a < b ? b : a;
+}
+
+/* The lowest half-edge on an inconsistent edge, and the triangle after it
+   that runs it the same way (NONE for an edge of 3+ triangles). */
+MESHFIX__PRIVATE unsigned int meshfix__first_inconsistent(const meshfix__mesh *m, unsigned int *other)
+{
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
+    for (h = 0; h < half_edges; ++h) {
+        unsigned int g = m->mate[h];
+        if (meshfix__is_ring(g)) {
+            *other = MESHFIX__NONE;
+            return h;
+        }
+        if (meshfix__is_mate(g) &&
+            ((unsigned int)meshfix__same_direction(m, h, g) ^ meshfix__flip_of(m, h / 3) ^ meshfix__flip_of(m, g / 3))) {
+            *other = g / 3;
+            return h;
+        }
+    }
+    return MESHFIX__NONE;
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__first_boundary(const meshfix__mesh *m)
+{
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
+    for (h = 0; h < half_edges; ++h)
+        if (m->mate[h] == MESHFIX__NONE && !(m->tri_bits[h / 3] & MESHFIX__TRI_DEGENERATE))
+            return h;
+    return MESHFIX__NONE;
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__first_ring(const meshfix__mesh *m)
+{
+    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
+    for (h = 0; h < half_edges; ++h)
+        if (meshfix__is_ring(m->mate[h]))
+            return h;
+    return MESHFIX__NONE;
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__first_with_vertex(const meshfix__mesh *m, unsigned int v)
+{
+    size_t i;
+    for (i = 0; i < 3 * m->triangle_count; ++i)
+        if (m->indices[i] == v)
+            return (unsigned int)(i / 3);
+    return MESHFIX__NONE;
+}
+
+/* The lowest triangle of a closed patch wound one way that faces inward. */
+MESHFIX__PRIVATE unsigned int meshfix__first_inside_out(meshfix__mesh *m)
+{
+    unsigned int p, first = MESHFIX__NONE;
+    for (p = 0; p < m->patch_count; ++p) {
+        meshfix__patch_sums s;
+        if (!meshfix__is_closed_orientable(m, p))
+            continue;
+        meshfix__sum_patch(m, p, &s);
+        if (s.reversed == 0 && s.volume_given < 0.0 && meshfix__volume_is_meaningful(s.volume_given, s.area)) {
+            unsigned int t = m->queue[m->patch_start[p]];
+            first = t < first ? t : first;
+        }
+    }
+    return first;
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__first_degenerate(const meshfix__mesh *m)
+{
+    size_t t;
+    for (t = 0; t < m->triangle_count; ++t)
+        if ((m->tri_bits[t] & (MESHFIX__TRI_DEGENERATE | MESHFIX__TRI_DUPLICATE)) ||
+            (m->positions != NULL && !meshfix__has_area(m, (unsigned int)t)))
+            return (unsigned int)t;
+    return MESHFIX__NONE;
+}
+
+/* The failure in one line: what fails, how often, the first place. */
+MESHFIX__PRIVATE void meshfix__explain_text(const meshfix__mesh *m, meshfix_check_failure *f, unsigned int h,
+                                           unsigned int other, unsigned int v, const meshfix_report *r)
+{
+    meshfix__line l;
+    unsigned int ends[2];
+    l.buffer = f->text, l.size = sizeof(f->text), l.length = 0;
+    ends[0] = f->edge[0], ends[1] = f->edge[1];
+    switch (f->requirement) {
+    case MESHFIX_REQUIRE_CONSISTENT:
+        meshfix__say(&l, "not consistent: ");
+        meshfix__say_count(&l, f->count, "edge runs", "edges run");
+        meshfix__say(&l, " the same way in two or more triangles");
+        if (m != NULL && h != MESHFIX__NONE) {
+            meshfix__say(&l, "; ");
+            meshfix__say_edge(&l, ends);
+            if (other != MESHFIX__NONE) {
+                meshfix__say(&l, " runs ");
+                meshfix__say_number(&l, m->indices[h]);
+                meshfix__say(&l, "->");
+                meshfix__say_number(&l, m->indices[h % 3 == 2 ? h - 2 : h + 1]);
+                meshfix__say(&l, " in triangles ");
+                meshfix__say_number(&l, f->triangle);
+                meshfix__say(&l, " and ");
+                meshfix__say_number(&l, other);
+            } else {
+                meshfix__say(&l, " (triangle ");
+                meshfix__say_number(&l, f->triangle);
+                meshfix__say(&l, ") has 3 or more triangles");
+            }
+        }
+        break;
+    case MESHFIX_REQUIRE_CLOSED:
+        meshfix__say(&l, "not closed: ");
+        meshfix__say_count(&l, f->count, "boundary edge", "boundary edges");
+        if (h != MESHFIX__NONE) {
+            meshfix__say(&l, "; ");
+            meshfix__say_edge(&l, ends);
+            meshfix__say(&l, " of triangle ");
+            meshfix__say_number(&l, f->triangle);
+            meshfix__say(&l, " has no neighbour");
+        }
+        break;
+    case MESHFIX_REQUIRE_MANIFOLD:
+        meshfix__say(&l, "not manifold: ");
+        meshfix__say_count(&l, f->count, "edge or vertex", "edges and vertices");
+        if (h != MESHFIX__NONE) {
+            meshfix__say(&l, "; ");
+            meshfix__say_edge(&l, ends);
+            meshfix__say(&l, " (triangle ");
+            meshfix__say_number(&l, f->triangle);
+            meshfix__say(&l, ") has 3 or more triangles");
+        } else if (v != MESHFIX__NONE) {
+            meshfix__say(&l, "; vertex ");
+            meshfix__say_number(&l, v);
+            meshfix__say(&l, " (triangle ");
+            meshfix__say_number(&l, f->triangle);
+            meshfix__say(&l, ") joins separate fans of triangles");
+        }
+        break;
+    case MESHFIX_REQUIRE_OUTWARD:
+        meshfix__say(&l, "not outward: ");
+        meshfix__say_count(&l, f->count, "closed patch faces", "closed patches face");
+        meshfix__say(&l, " inward");
+        if (f->triangle != (size_t)-1) {
+            meshfix__say(&l, "; the first holds triangle ");
+            meshfix__say_number(&l, f->triangle);
+        }
+        break;
+    case MESHFIX_REQUIRE_NO_DEGENERATE:
+        meshfix__say(&l, "degenerate: ");
+        meshfix__say_count(&l, r->mesh.triangles_degenerate, "triangle repeats", "triangles repeat");
+        meshfix__say(&l, " a vertex, ");
+        meshfix__say_number(&l, r->mesh.triangles_zero_area);
+        meshfix__say(&l, " have no area, ");
+        meshfix__say_number(&l, r->mesh.triangles_duplicate);
+        meshfix__say(&l, " are duplicates");
+        if (f->triangle != (size_t)-1) {
+            meshfix__say(&l, "; the first is triangle ");
+            meshfix__say_number(&l, f->triangle);
+        }
+        break;
+    default:
+        meshfix__say(&l, "ok");
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__explain(meshfix__mesh *m, const meshfix_report *r, unsigned int requirements,
+                                      meshfix_check_failure *f)
+{
+    const meshfix_mesh_facts *k = &r->mesh;
+    unsigned int h = MESHFIX__NONE, t = MESHFIX__NONE, other = MESHFIX__NONE, v = MESHFIX__NONE, ends[2];
+    f->result = MESHFIX_OK;
+    f->requirement = 0;
+    f->count = 0;
+    f->triangle = (size_t)-1;
+    f->edge[0] = f->edge[1] = MESHFIX__NONE;
+    ends[0] = ends[1] = MESHFIX__NONE;
+    if ((requirements & MESHFIX_REQUIRE_CONSISTENT) && k->edges_inconsistent != 0) {
+        f->requirement = MESHFIX_REQUIRE_CONSISTENT, f->count = k->edges_inconsistent;
+        h = m != NULL ? meshfix__first_inconsistent(m, &other) : MESHFIX__NONE;
+    } else if ((requirements & MESHFIX_REQUIRE_CLOSED) && k->edges_boundary != 0) {
+        f->requirement = MESHFIX_REQUIRE_CLOSED, f->count = k->edges_boundary;
+        h = m != NULL ? meshfix__first_boundary(m) : MESHFIX__NONE;
+    } else if ((requirements & MESHFIX_REQUIRE_MANIFOLD) && k->edges_non_manifold + k->vertices_non_manifold != 0) {
+        f->requirement = MESHFIX_REQUIRE_MANIFOLD, f->count = k->edges_non_manifold + k->vertices_non_manifold;
+        h = m != NULL ? meshfix__first_ring(m) : MESHFIX__NONE;
+        if (m != NULL && h == MESHFIX__NONE) {
+            v = m->first_non_manifold_vertex;
+            t = meshfix__first_with_vertex(m, v);
+        }
+    } else if ((requirements & MESHFIX_REQUIRE_OUTWARD) && k->patches_inside_out != 0) {
+        f->requirement = MESHFIX_REQUIRE_OUTWARD, f->count = k->patches_inside_out;
+        t = m != NULL ? meshfix__first_inside_out(m) : MESHFIX__NONE;
+    } else if ((requirements & MESHFIX_REQUIRE_NO_DEGENERATE) &&
+               k->triangles_degenerate + k->triangles_zero_area + k->triangles_duplicate != 0) {
+        f->requirement = MESHFIX_REQUIRE_NO_DEGENERATE;
+        f->count = k->triangles_degenerate + k->triangles_zero_area + k->triangles_duplicate;
+        t = m != NULL ? meshfix__first_degenerate(m) : MESHFIX__NONE;
+    }
+    if (h != MESHFIX__NONE) {
+        t = h / 3;
+        meshfix__edge_ends(m, h, ends);
+        f->edge[0] = ends[0], f->edge[1] = ends[1];
+    }
+    if (t != MESHFIX__NONE)
+        f->triangle = t;
+    meshfix__explain_text(m, f, h, other, v, r);
+}
+
 /* ===== >>public ===== */
 
-MESHFIX_API meshfix_result meshfix_orient(unsigned int *destination, const unsigned int *indices,
-                                          size_t index_count, const float *vertex_positions,
-                                          size_t vertex_count, size_t vertex_positions_stride,
-                                          const meshfix_options *options, meshfix_report *report)
+MESHFIX__PRIVATE meshfix_result meshfix__call_setup(meshfix__call *call, void *destination, const void *indices,
+                                                  size_t index_count, const void *positions, size_t vertex_count,
+                                                  size_t stride, const meshfix_options *options, int policy,
+                                                  meshfix_report *report, meshfix_outputs *outputs)
 {
+    meshfix_options zero;
+    MESHFIX_MEMSET(call, 0, sizeof(*call));
+    MESHFIX_MEMSET(&zero, 0, sizeof(zero));
+    call->destination = destination;
+    call->policy = policy;
+    call->report = report;
+    call->outputs = outputs;
+    if (!meshfix__describe_input(&call->input, indices, index_count, positions, vertex_count, stride,
+                                 options != NULL ? options : &zero))
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
+    return MESHFIX_OK;
+}
+
+MESHFIX_API meshfix_result meshfix_orient(void *destination, const void *indices, size_t index_count,
+                                          const void *positions, size_t vertex_count, size_t stride,
+                                          const meshfix_options *options, meshfix_report *report,
+                                          meshfix_outputs *outputs)
+{
+    meshfix__call call;
     int policy = options != NULL ? (int)options->policy : (int)MESHFIX_POLICY_AUTO;
+    meshfix_result result;
     if (policy < 0 || policy >= (int)MESHFIX_POLICY_COUNT)
         return MESHFIX_ERROR_INVALID_ARGUMENT;
-    return meshfix__run(destination, indices, index_count, vertex_positions, vertex_count,
-                        vertex_positions_stride, options, policy, report);
+    result = meshfix__call_setup(&call, destination, indices, index_count, positions, vertex_count, stride, options,
+                                 policy, report, outputs);
+    return result != MESHFIX_OK ? result : meshfix__run(&call, options);
 }
 
-MESHFIX_API meshfix_result meshfix_inspect_ex(const unsigned int *indices, size_t index_count,
-                                              const float *vertex_positions, size_t vertex_count,
-                                              size_t vertex_positions_stride, const meshfix_options *options,
-                                              meshfix_report *report)
+MESHFIX_API meshfix_result meshfix_inspect(const void *indices, size_t index_count, const void *positions,
+                                           size_t vertex_count, size_t stride, const meshfix_options *options,
+                                           meshfix_report *report, meshfix_outputs *outputs)
 {
+    meshfix__call call;
+    meshfix_result result;
     if (report == NULL)
         return MESHFIX_ERROR_INVALID_ARGUMENT;
-    return meshfix__run(NULL, indices, index_count, vertex_positions, vertex_count, vertex_positions_stride,
-                        options, -1, report);
+    result = meshfix__call_setup(&call, NULL, indices, index_count, positions, vertex_count, stride, options, -1,
+                                 report, outputs);
+    return result != MESHFIX_OK ? result : meshfix__run(&call, options);
 }
 
-MESHFIX_API meshfix_result meshfix_inspect(const unsigned int *indices, size_t index_count,
-                                           const float *vertex_positions, size_t vertex_count,
-                                           size_t vertex_positions_stride, meshfix_report *report)
+MESHFIX_API int meshfix_check(const void *indices, size_t index_count, const void *positions, size_t vertex_count,
+                              size_t stride, unsigned int requirements, const meshfix_options *options,
+                              meshfix_check_failure *failure)
 {
-    return meshfix_inspect_ex(indices, index_count, vertex_positions, vertex_count, vertex_positions_stride,
-                              NULL, report);
-}
-
-MESHFIX_API int meshfix_check(const unsigned int *indices, size_t index_count, const float *vertex_positions,
-                              size_t vertex_count, size_t vertex_positions_stride, unsigned int requirements)
-{
+    meshfix__call call;
+    meshfix_check_failure local;
     meshfix_report r;
+    meshfix_result result;
     unsigned int needs_positions = MESHFIX_REQUIRE_OUTWARD | MESHFIX_REQUIRE_NO_DEGENERATE;
+    meshfix_check_failure *f = failure != NULL ? failure : &local;
     if (requirements == 0)
         requirements = MESHFIX_REQUIRE_CONSISTENT;
-    if ((requirements & needs_positions) && vertex_positions == NULL)
+    result = meshfix__call_setup(&call, NULL, indices, index_count, positions, vertex_count, stride, options, -1, &r,
+                                 NULL);
+    if (result == MESHFIX_OK && (requirements & needs_positions) && positions == NULL)
+        result = MESHFIX_ERROR_POSITIONS_REQUIRED;
+    if (result == MESHFIX_OK) {
+        call.requirements = requirements;
+        call.failure = f;
+        result = meshfix__run(&call, options);
+    }
+    if (result != MESHFIX_OK) {
+        MESHFIX_MEMSET(f, 0, sizeof(*f));
+        f->result = result;
+        f->triangle = (size_t)-1;
+        f->edge[0] = f->edge[1] = MESHFIX__NONE;
+        {
+            meshfix__line l;
+            l.buffer = f->text, l.size = sizeof(f->text), l.length = 0;
+            meshfix__say(&l, "not valid input: ");
+            meshfix__say(&l, meshfix_result_string(result));
+        }
         return 0;
-    if (meshfix_inspect(indices, index_count, vertex_positions, vertex_count, vertex_positions_stride, &r) !=
-        MESHFIX_OK)
-        return 0;
-    if ((requirements & MESHFIX_REQUIRE_CONSISTENT) && r.edges_inconsistent != 0)
-        return 0;
-    if ((requirements & MESHFIX_REQUIRE_CLOSED) && r.edges_boundary != 0)
-        return 0;
-    if ((requirements & MESHFIX_REQUIRE_MANIFOLD) && r.edges_non_manifold + r.vertices_non_manifold != 0)
-        return 0;
-    if ((requirements & MESHFIX_REQUIRE_OUTWARD) && r.patches_inside_out != 0)
-        return 0;
-    if ((requirements & MESHFIX_REQUIRE_NO_DEGENERATE) &&
-        r.triangles_degenerate + r.triangles_zero_area + r.triangles_duplicate != 0)
-        return 0;
-    return 1;
+    }
+    return f->requirement == 0;
 }
 
 MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count, const meshfix_options *options)
 {
     meshfix__plan plan;
     meshfix__geometry_counts worst;
+    meshfix__input in;
+    meshfix_options zero;
     size_t geometry, triangles = index_count / 3;
     int policy = options != NULL ? (int)options->policy : (int)MESHFIX_POLICY_AUTO;
-    if (index_count == 0 || index_count > MESHFIX__MAX_INDEX_COUNT || !meshfix__make_plan(&plan, vertex_count, triangles))
+    static const float some_position[3] = {0, 0, 0};
+    MESHFIX_MEMSET(&zero, 0, sizeof(zero));
+    /* the plan of a mesh with positions: the input stage's arrays included */
+    if (!meshfix__describe_input(&in, NULL, index_count, some_position, vertex_count, 0,
+                                 options != NULL ? options : &zero))
+        return 0;
+    if (index_count == 0 || index_count > MESHFIX__MAX_INDEX_COUNT ||
+        !meshfix__make_plan(&plan, vertex_count, triangles, &in))
         return 0;
     if (policy != MESHFIX_POLICY_AUTO && policy != MESHFIX_POLICY_OUTWARD && policy != MESHFIX_POLICY_VISIBILITY)
         return plan.total;
@@ -5348,29 +6022,32 @@ MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count,
     return plan.total + 16 + geometry;
 }
 
-MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex_positions, size_t vertex_count,
-                                        size_t vertex_positions_stride, float tolerance,
-                                        const meshfix_options *options, size_t *unique_count)
+MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const void *positions, size_t vertex_count,
+                                        size_t stride, float tolerance, const meshfix_options *options,
+                                        size_t *unique_count)
 {
-    meshfix_allocator allocator;
+    meshfix_memory_options allocator;
     meshfix__welder w;
     unsigned int *block, *result;
+    unsigned int size = options != NULL && options->position_size != 0 ? options->position_size : 4u;
     size_t v, buckets = 16, unique, words;
+    double p[3];
     if (vertex_count == 0) {
         if (unique_count != NULL)
             *unique_count = 0;
         return MESHFIX_OK;
     }
-    if (remap == NULL || vertex_positions == NULL || vertex_positions_stride < 3 * sizeof(float) ||
-        vertex_positions_stride % sizeof(float) != 0 || !meshfix__is_finite(tolerance) || tolerance < 0.0f)
+    if (stride == 0)
+        stride = 3 * (size_t)size;
+    if (remap == NULL || positions == NULL || (size != 4 && size != 8) || stride < 3 * (size_t)size ||
+        stride % 4 != 0 || !meshfix__is_finite(tolerance) || tolerance < 0.0f)
         return MESHFIX_ERROR_INVALID_ARGUMENT;
-    if (vertex_count > MESHFIX__MAX_VERTEX_COUNT - 1 || !meshfix__vertices_addressable(vertex_count, vertex_positions_stride))
+    if (vertex_count > MESHFIX__MAX_VERTEX_COUNT - 1 || !meshfix__vertices_addressable(vertex_count, stride, 3 * (size_t)size))
         return MESHFIX_ERROR_TOO_LARGE;
     for (v = 0; v < vertex_count; ++v)
-        if (!meshfix__is_finite_point((const float *)(const void *)((const char *)vertex_positions +
-                                                                    v * vertex_positions_stride)))
+        if (!meshfix__read_point((const unsigned char *)positions, stride, size, v, p))
             return MESHFIX_ERROR_NON_FINITE;
-    if (options != NULL && options->allocator.alloc_fn != NULL && options->allocator.free_fn == NULL)
+    if (options != NULL && options->memory.alloc_func != NULL && options->memory.free_func == NULL)
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     meshfix__pick_allocator(options, &allocator);
     while (buckets < vertex_count)
@@ -5384,8 +6061,9 @@ MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex
     if (block == NULL)
         return MESHFIX_ERROR_OUT_OF_MEMORY;
     MESHFIX_MEMSET(&w, 0, sizeof(w));
-    w.positions = (const char *)vertex_positions;
-    w.stride = vertex_positions_stride;
+    w.positions = (const unsigned char *)positions;
+    w.stride = stride;
+    w.position_size = size;
     /* a hair wider than the tolerance, so rounding in the division never
        puts two vertices within it more than one cell apart */
     w.cell = (double)tolerance * (1.0 + 1e-9);
@@ -5402,6 +6080,84 @@ MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const float *vertex
         *unique_count = unique;
     meshfix__release(&allocator, block);
     return MESHFIX_OK;
+}
+
+/* The share of the area (or of the triangles, without positions) that
+   the doubtful patches hold. */
+MESHFIX__PRIVATE double meshfix__doubtful_share(const meshfix_report *r)
+{
+    if (r->mesh.area > 0.0)
+        return r->area_doubtful / r->mesh.area;
+    return r->mesh.triangles != 0 ? (double)r->triangles_doubtful / (double)r->mesh.triangles : 0.0;
+}
+
+MESHFIX__PRIVATE void meshfix__say_fixed(meshfix__line *l, const meshfix_report *r)
+{
+    meshfix__say(l, "fixed ");
+    meshfix__say_count(l, r->triangles_flipped, "triangle", "triangles");
+    meshfix__say(l, " in ");
+    meshfix__say_count(l, r->patches_flipped, "patch", "patches");
+}
+
+MESHFIX_API size_t meshfix_summary(const meshfix_report *r, char *buffer, size_t size)
+{
+    meshfix__line l;
+    l.buffer = buffer, l.size = buffer != NULL ? size : 0, l.length = 0;
+    switch (r->verdict) {
+    case MESHFIX_VERDICT_CLEAN:
+        meshfix__say(&l, "clean: nothing to flip (");
+        meshfix__say_count(&l, r->mesh.triangles, "triangle", "triangles");
+        meshfix__say(&l, ", ");
+        meshfix__say_count(&l, r->mesh.patches, "patch", "patches");
+        meshfix__say(&l, ")");
+        break;
+    case MESHFIX_VERDICT_REPAIRED:
+        meshfix__say_fixed(&l, r);
+        break;
+    case MESHFIX_VERDICT_DOUBTFUL:
+        if (r->triangles_flipped != 0)
+            meshfix__say_fixed(&l, r);
+        else
+            meshfix__say(&l, "nothing flipped");
+        meshfix__say(&l, "; ");
+        meshfix__say_count(&l, r->patches_doubtful, "patch", "patches");
+        meshfix__say(&l, " (");
+        meshfix__say_percent(&l, meshfix__doubtful_share(r));
+        meshfix__say(&l, r->mesh.area > 0.0 ? " of the area) doubtful" : " of the triangles) doubtful");
+        break;
+    case MESHFIX_VERDICT_NOT_ORIENTABLE:
+        meshfix__say(&l, "not orientable: ");
+        meshfix__say_count(&l, r->mesh.components_non_orientable, "component (Moebius or Klein) keeps",
+                           "components (Moebius or Klein) keep");
+        meshfix__say(&l, " ");
+        meshfix__say_count(&l, r->mesh.edges_inconsistent, "inconsistent edge", "inconsistent edges");
+        meshfix__say(&l, "; ");
+        meshfix__say_fixed(&l, r);
+        break;
+    case MESHFIX_VERDICT_INCONSISTENT:
+        meshfix__say(&l, "inconsistent: ");
+        meshfix__say_count(&l, r->mesh.edges_inconsistent, "edge runs", "edges run");
+        meshfix__say(&l, " the same way in two or more triangles (");
+        meshfix__say_count(&l, r->mesh.patches, "patch", "patches");
+        meshfix__say(&l, ")");
+        break;
+    case MESHFIX_VERDICT_INSIDE_OUT:
+        meshfix__say(&l, "inside out: ");
+        meshfix__say_count(&l, r->mesh.patches_inside_out, "closed patch faces", "closed patches face");
+        meshfix__say(&l, " inward");
+        break;
+    default:
+        meshfix__say(&l, "unknown verdict");
+    }
+    return l.length;
+}
+
+MESHFIX_API const char *meshfix_verdict_string(meshfix_verdict verdict)
+{
+    static const char *const texts[] = {"clean", "repaired", "doubtful", "not orientable", "inconsistent",
+                                        "inside out", "unknown verdict"};
+    unsigned int i = (unsigned int)verdict;
+    return texts[i < 6u ? i : 6u];
 }
 
 MESHFIX_API const char *meshfix_result_string(meshfix_result result)

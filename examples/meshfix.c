@@ -74,24 +74,24 @@ static int weld(mio_mesh *mesh, float tolerance)
 static void print_report(const char *title, const meshfix_report *r)
 {
     printf("%s\n", title);
-    printf("  triangles %lu (degenerate %lu, zero area %lu, duplicate %lu)\n", (unsigned long)r->triangles,
-           (unsigned long)r->triangles_degenerate, (unsigned long)r->triangles_zero_area,
-           (unsigned long)r->triangles_duplicate);
-    printf("  vertices  %lu used (%lu not finite, %lu non-manifold)\n", (unsigned long)r->vertices_used,
-           (unsigned long)r->vertices_non_finite, (unsigned long)r->vertices_non_manifold);
+    printf("  triangles %lu (degenerate %lu, zero area %lu, duplicate %lu)\n", (unsigned long)r->mesh.triangles,
+           (unsigned long)r->mesh.triangles_degenerate, (unsigned long)r->mesh.triangles_zero_area,
+           (unsigned long)r->mesh.triangles_duplicate);
+    printf("  vertices  %lu used (%lu not finite, %lu non-manifold)\n", (unsigned long)r->mesh.vertices_used,
+           (unsigned long)r->mesh.vertices_non_finite, (unsigned long)r->mesh.vertices_non_manifold);
     printf("  edges     %lu: boundary %lu, manifold %lu, non-manifold %lu, inconsistent %lu\n",
-           (unsigned long)r->edges, (unsigned long)r->edges_boundary, (unsigned long)r->edges_manifold,
-           (unsigned long)r->edges_non_manifold, (unsigned long)r->edges_inconsistent);
-    printf("  patches   %lu (closed %lu, inside-out %lu)\n", (unsigned long)r->patches,
-           (unsigned long)r->patches_closed, (unsigned long)r->patches_inside_out);
+           (unsigned long)r->mesh.edges, (unsigned long)r->mesh.edges_boundary, (unsigned long)r->mesh.edges_manifold,
+           (unsigned long)r->mesh.edges_non_manifold, (unsigned long)r->mesh.edges_inconsistent);
+    printf("  patches   %lu (closed %lu, inside-out %lu)\n", (unsigned long)r->mesh.patches,
+           (unsigned long)r->mesh.patches_closed, (unsigned long)r->mesh.patches_inside_out);
     printf("  components %lu (closed %lu, non-orientable %lu), Euler characteristic %ld\n",
-           (unsigned long)r->components, (unsigned long)r->components_closed,
-           (unsigned long)r->components_non_orientable, r->euler_characteristic);
-    printf("  area %.6g, signed volume of closed patches %.6g\n", r->area, r->signed_volume);
-    if (r->rays_cast != 0 || r->shells_inward != 0)
+           (unsigned long)r->mesh.components, (unsigned long)r->mesh.components_closed,
+           (unsigned long)r->mesh.components_non_orientable, r->mesh.euler_characteristic);
+    printf("  area %.6g, signed volume of closed patches %.6g\n", r->mesh.area, r->mesh.signed_volume);
+    if (r->evidence.rays_cast != 0 || r->evidence.shells_inward != 0)
         printf("  visibility: %lu rays cast, %lu patch pairs, %lu merges, %lu pairs left against their coherence, "
-               "%lu cavities\n", (unsigned long)r->rays_cast, (unsigned long)r->patch_pairs,
-               (unsigned long)r->patches_merged, (unsigned long)r->pairs_conflicting, (unsigned long)r->shells_inward);
+               "%lu cavities\n", (unsigned long)r->evidence.rays_cast, (unsigned long)r->evidence.patch_pairs,
+               (unsigned long)r->evidence.patches_merged, (unsigned long)r->evidence.pairs_conflicting, (unsigned long)r->evidence.shells_inward);
 }
 
 /* Flipped faces red; the rest a muted colour per patch, so patch seams show. */
@@ -233,12 +233,15 @@ int main(int argc, char **argv)
     char error[256];
     mio_mesh mesh;
     meshfix_options options;
+    meshfix_outputs outputs;
     meshfix_report before, after;
     meshfix_result r;
     output_file out, marked;
     size_t triangles;
 
     memset(&options, 0, sizeof(options));
+
+    memset(&outputs, 0, sizeof(outputs));
     memset(&out, 0, sizeof(out));
     memset(&marked, 0, sizeof(marked));
     for (i = 1; i < argc; ++i) {
@@ -297,8 +300,8 @@ int main(int argc, char **argv)
     }
     if (weld_tolerance >= 0.0f && !weld(&mesh, weld_tolerance)) {
         status = 2;
-    } else if ((r = meshfix_inspect(mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12,
-                                    &before)) != MESHFIX_OK) {
+    } else if ((r = meshfix_inspect(mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12, NULL,
+                                    &before, NULL)) != MESHFIX_OK) {
         fprintf(stderr, "meshfix: %s: %s\n", input, meshfix_result_string(r));
         status = 2;
     } else if (!quiet) {
@@ -312,23 +315,23 @@ int main(int argc, char **argv)
     }
 
     triangles = mesh.index_count / 3;
-    options.flipped = (unsigned char *)malloc(triangles + 1);
-    options.patch_ids = (unsigned int *)malloc(sizeof(unsigned int) * triangles + 1);
-    if (options.flipped == NULL || options.patch_ids == NULL) {
+    outputs.flipped = (unsigned char *)malloc(triangles + 1);
+    outputs.patch_ids = (unsigned int *)malloc(sizeof(unsigned int) * triangles + 1);
+    if (outputs.flipped == NULL || outputs.patch_ids == NULL) {
         fprintf(stderr, "meshfix: out of memory\n");
         status = 1;
     } else if ((r = meshfix_orient(mesh.indices, mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count,
-                                   12, &options, &after)) != MESHFIX_OK) {
+                                   12, &options, &after, &outputs)) != MESHFIX_OK) {
         fprintf(stderr, "meshfix: %s: %s\n", input, meshfix_result_string(r));
         status = 2;
     } else {
         unsigned char *rgb = NULL;
         if (!quiet) {
             printf("repair (policy %s): flipped %lu of %lu triangles\n", policy_name(options.policy),
-                   (unsigned long)after.triangles_flipped, (unsigned long)after.triangles);
+                   (unsigned long)after.triangles_flipped, (unsigned long)after.mesh.triangles);
             print_report(output, &after);
         }
-        if (mark != NULL && (rgb = face_colours(options.flipped, options.patch_ids, triangles)) == NULL) {
+        if (mark != NULL && (rgb = face_colours(outputs.flipped, outputs.patch_ids, triangles)) == NULL) {
             fprintf(stderr, "meshfix: out of memory\n");
             status = 1;
         } else if (!output_write(&out, &mesh, NULL) || (mark != NULL && !output_write(&marked, &mesh, rgb))) {
@@ -340,8 +343,8 @@ int main(int argc, char **argv)
     }
     output_discard(&out);
     output_discard(&marked);
-    free(options.flipped);
-    free(options.patch_ids);
+    free(outputs.flipped);
+    free(outputs.patch_ids);
     mio_free(&mesh);
     return status;
 }

@@ -36,12 +36,12 @@ static float scene(const float p[3], void *user)
 static void print_report(const char *title, const meshfix_report *r)
 {
     printf("%s\n", title);
-    printf("  triangles %lu, components %lu, Euler characteristic %ld\n", (unsigned long)r->triangles,
-           (unsigned long)r->components, r->euler_characteristic);
-    printf("  edges %lu: manifold %lu, boundary %lu, inconsistent %lu\n", (unsigned long)r->edges,
-           (unsigned long)r->edges_manifold, (unsigned long)r->edges_boundary, (unsigned long)r->edges_inconsistent);
-    printf("  closed patches %lu, inside-out %lu, signed volume %.4f\n", (unsigned long)r->patches_closed,
-           (unsigned long)r->patches_inside_out, r->signed_volume);
+    printf("  triangles %lu, components %lu, Euler characteristic %ld\n", (unsigned long)r->mesh.triangles,
+           (unsigned long)r->mesh.components, r->mesh.euler_characteristic);
+    printf("  edges %lu: manifold %lu, boundary %lu, inconsistent %lu\n", (unsigned long)r->mesh.edges,
+           (unsigned long)r->mesh.edges_manifold, (unsigned long)r->mesh.edges_boundary, (unsigned long)r->mesh.edges_inconsistent);
+    printf("  closed patches %lu, inside-out %lu, signed volume %.4f\n", (unsigned long)r->mesh.patches_closed,
+           (unsigned long)r->mesh.patches_inside_out, r->mesh.signed_volume);
 }
 
 int main(int argc, char **argv)
@@ -62,27 +62,27 @@ int main(int argc, char **argv)
     scrambled = gen_flip_random(&mesh, 0.4, 2026, NULL);
     printf("meshed the scene with marching tetrahedra (cells %.2f) and reversed %lu of %lu triangles\n\n", cell,
            (unsigned long)scrambled, (unsigned long)(mesh.index_count / 3));
-    meshfix_inspect(mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12, &before);
+    meshfix_inspect(mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12, NULL, &before, NULL);
     print_report("before", &before);
 
     memset(&options, 0, sizeof(options));
     options.policy = MESHFIX_POLICY_SDF;
-    options.sdf = scene; /* the gradient comes from central differences */
+    options.sdf.distance = scene; /* the gradient comes from central differences */
     r = meshfix_orient(mesh.indices, mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12,
-                       &options, &after);
+                       &options, &after, NULL);
     if (r != MESHFIX_OK) {
         fprintf(stderr, "sdf_demo: %s\n", meshfix_result_string(r));
         return 2;
     }
     printf("\nrepair (policy sdf, per patch): flipped %lu triangles with %lu SDF evaluations; "
            "%lu triangles' own gradient vote disagreed with their patch\n\n",
-           (unsigned long)after.triangles_flipped, (unsigned long)after.sdf_evaluations,
-           (unsigned long)after.triangles_sdf_disagree);
+           (unsigned long)after.triangles_flipped, (unsigned long)after.evidence.sdf_evaluations,
+           (unsigned long)after.evidence.triangles_sdf_disagree);
     print_report("after", &after);
     if (argc > 1 && !mio_save(argv[1], &mesh, NULL, error, sizeof(error))) {
         fprintf(stderr, "sdf_demo: %s\n", error);
         return 1;
     }
     mio_free(&mesh);
-    return after.edges_inconsistent == 0 && after.patches_inside_out == 0 ? 0 : 3;
+    return after.mesh.edges_inconsistent == 0 && after.mesh.patches_inside_out == 0 ? 0 : 3;
 }

@@ -25,7 +25,7 @@
 // each the fastest of several runs. All times are ns per triangle. "flood
 // fill" is the topology-only repair (positions NULL, report NULL) with a
 // fresh allocation per call; "reused scratch" is the same call with
-// options.scratch kept across calls, as an engine would: glibc hands a
+// options.memory.scratch kept across calls, as an engine would: glibc hands a
 // block this large back to the kernel on free, so each fresh call pays
 // first-touch page faults, while OpenMesh's smaller vectors come back warm
 // from the heap on its repeated runs. Peak scratch is counted through the
@@ -83,9 +83,9 @@ static meshfix_options counting_options(PeakAllocator *counter)
 {
     meshfix_options options;
     std::memset(&options, 0, sizeof(options));
-    options.allocator.alloc_fn = peak_alloc;
-    options.allocator.free_fn = peak_free;
-    options.allocator.user_data = counter;
+    options.memory.alloc_func = peak_alloc;
+    options.memory.free_func = peak_free;
+    options.memory.user_data = counter;
     return options;
 }
 
@@ -136,17 +136,17 @@ static int bench_sdf(bool quick)
     std::memset(&options, 0, sizeof(options));
     options.policy = MESHFIX_POLICY_SDF; // and MAJORITY: neither casts rays, the same scratch
     std::vector<unsigned char> scratch(meshfix_scratch_size(g.index_count, g.vertex_count, &options));
-    options.scratch = scratch.data();
-    options.scratch_size = scratch.size();
+    options.memory.scratch = scratch.data();
+    options.memory.scratch_size = scratch.size();
     int status = 0;
     meshfix_report report;
     auto run = [&](const float *positions, meshfix_policy policy, meshfix_sdf_mode mode) {
         options.policy = policy;
-        options.sdf = policy == MESHFIX_POLICY_SDF ? sdf_smooth_union : nullptr;
-        options.sdf_mode = mode;
+        options.sdf.distance = policy == MESHFIX_POLICY_SDF ? sdf_smooth_union : nullptr;
+        options.sdf.mode = mode;
         double t = fastest(3, [&] {
             if (meshfix_orient(out.data(), g.indices, g.index_count, positions, g.vertex_count, 12, &options,
-                               &report) != MESHFIX_OK)
+                               &report, NULL) != MESHFIX_OK)
                 status = 1;
         });
         /* the plain per-triangle rule may leave triangles with no vote as
@@ -159,14 +159,14 @@ static int bench_sdf(bool quick)
     };
     double flood = run(nullptr, MESHFIX_POLICY_MAJORITY, MESHFIX_SDF_PER_PATCH);
     double patch = run(g.positions, MESHFIX_POLICY_SDF, MESHFIX_SDF_PER_PATCH);
-    double evaluations = double(report.sdf_evaluations) / triangles;
+    double evaluations = double(report.evidence.sdf_evaluations) / triangles;
     double plain = run(g.positions, MESHFIX_POLICY_SDF, MESHFIX_SDF_PER_TRIANGLE);
     std::printf("\n## Part 0b. SDF policy against the flood fill, smooth union of two spheres, %zu triangles, 30%% reversed, reused scratch, with report (time / flood fill: how many times longer)\n\n",
                 triangles);
     std::printf("| repair | SDF evaluations / triangle | ns / triangle | time / flood fill |\n|---|---:|---:|---:|\n");
     std::printf("| flood fill (topology only) | 0 | %.1f | 1.0x |\n", 1e9 * flood / triangles);
     std::printf("| SDF per patch | %.1f | %.1f | %.1fx |\n", evaluations, 1e9 * patch / triangles, patch / flood);
-    std::printf("| SDF per triangle | %.1f | %.1f | %.1fx |\n", double(report.sdf_evaluations) / triangles,
+    std::printf("| SDF per triangle | %.1f | %.1f | %.1fx |\n", double(report.evidence.sdf_evaluations) / triangles,
                 1e9 * plain / triangles, plain / flood);
     mio_free(&g);
     return status;
@@ -209,7 +209,7 @@ static int bench_flood(bool quick, std::vector<std::string> *summary)
             options.policy = policy;
             return fastest(runs, [&] {
                 if (meshfix_orient(out.data(), scrambled.data(), g.index_count, positions, g.vertex_count, 12,
-                                   &options, r) != MESHFIX_OK)
+                                   &options, r, NULL) != MESHFIX_OK)
                     status = 1;
             });
         };
@@ -222,21 +222,21 @@ static int bench_flood(bool quick, std::vector<std::string> *summary)
         double flood = repair(nullptr, MESHFIX_POLICY_MAJORITY, nullptr);
         verify("flood fill");
         std::vector<unsigned char> scratch(meshfix_scratch_size(g.index_count, g.vertex_count, &options));
-        options.scratch = scratch.data();
-        options.scratch_size = scratch.size();
+        options.memory.scratch = scratch.data();
+        options.memory.scratch_size = scratch.size();
         double reused = repair(nullptr, MESHFIX_POLICY_MAJORITY, nullptr);
         verify("reused scratch");
-        options.scratch = nullptr;
-        options.scratch_size = 0;
+        options.memory.scratch = nullptr;
+        options.memory.scratch_size = 0;
         double automatic = repair(g.positions, MESHFIX_POLICY_AUTO, nullptr);
         verify("auto");
         double reported = repair(g.positions, MESHFIX_POLICY_AUTO, &report);
         verify("reported");
-        if (report.edges_inconsistent != 0 || report.triangles_flipped == 0)
+        if (report.mesh.edges_inconsistent != 0 || report.triangles_flipped == 0)
             status = 1;
         double inspect = fastest(runs, [&] {
-            if (meshfix_inspect_ex(scrambled.data(), g.index_count, g.positions, g.vertex_count, 12, &options,
-                                   &report) != MESHFIX_OK)
+            if (meshfix_inspect(scrambled.data(), g.index_count, g.positions, g.vertex_count, 12, &options,
+                                   &report, NULL) != MESHFIX_OK)
                 status = 1;
         });
         size_t faces = 0;

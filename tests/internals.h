@@ -5,17 +5,25 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A mesh bound to scratch of its own (free `block` after), degenerate and
-   non-finite triangles marked. */
+/* A mesh bound to scratch of its own (free `block` after), its input
+   read (the options' topology) and degenerate and non-finite triangles
+   marked. */
 static unsigned char *bind_mesh(meshfix__mesh *m, const meshfix_options *o, const unsigned int *indices,
                                 size_t index_count, const float *positions, size_t vertex_count)
 {
+    static meshfix_outputs no_outputs;
     meshfix__plan plan;
-    unsigned char *block;
-    meshfix__make_plan(&plan, vertex_count, index_count / 3);
-    block = (unsigned char *)malloc(plan.total + 16);
-    meshfix__bind(m, block + (16 - (size_t)block % 16) % 16, &plan, indices, index_count, positions, 12, vertex_count,
-                  o, 0);
+    meshfix__input input, *kept;
+    unsigned char *block, *aligned;
+    size_t head = (sizeof(meshfix__input) + 15) / 16 * 16;
+    meshfix__describe_input(&input, indices, index_count, positions, vertex_count, 12, o);
+    meshfix__make_plan(&plan, vertex_count, index_count / 3, &input);
+    block = (unsigned char *)malloc(head + plan.total + 16);
+    kept = (meshfix__input *)(void *)block; /* m->input points at it: it lives as long as the block */
+    *kept = input;
+    aligned = block + head + (16 - (size_t)(block + head) % 16) % 16;
+    meshfix__bind(m, aligned, &plan, kept, vertex_count, o, &no_outputs, 0);
+    meshfix__read_input(m, kept, &plan, aligned);
     meshfix__mark_degenerate(m);
     return block;
 }

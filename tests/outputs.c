@@ -33,11 +33,11 @@ static unsigned int digest_report(unsigned int h, const meshfix_report *r)
 {
     char text[256];
     snprintf(text, sizeof(text), "%lu %lu %lu %lu %lu %lu %lu %lu %lu %lu %lu %lu %.6g %.6g",
-             (unsigned long)r->triangles_flipped, (unsigned long)r->patches, (unsigned long)r->patches_closed,
-             (unsigned long)r->patches_inside_out, (unsigned long)r->components, (unsigned long)r->edges_inconsistent,
-             (unsigned long)r->triangles_duplicate, (unsigned long)r->vertices_non_manifold,
-             (unsigned long)r->shells_inward, (unsigned long)r->rays_cast, (unsigned long)r->patches_merged,
-             (unsigned long)r->triangles_zero_area, r->area, r->signed_volume);
+             (unsigned long)r->triangles_flipped, (unsigned long)r->mesh.patches, (unsigned long)r->mesh.patches_closed,
+             (unsigned long)r->mesh.patches_inside_out, (unsigned long)r->mesh.components, (unsigned long)r->mesh.edges_inconsistent,
+             (unsigned long)r->mesh.triangles_duplicate, (unsigned long)r->mesh.vertices_non_manifold,
+             (unsigned long)r->evidence.shells_inward, (unsigned long)r->evidence.rays_cast, (unsigned long)r->evidence.patches_merged,
+             (unsigned long)r->mesh.triangles_zero_area, r->mesh.area, r->mesh.signed_volume);
     return digest_bytes(h, text, strlen(text));
 }
 
@@ -54,6 +54,7 @@ static void run(const char *name, const mio_mesh *g)
     float confidence[64];
     for (p = 0; p < sizeof(names) / sizeof(names[0]); ++p) {
         meshfix_options o;
+        meshfix_outputs outputs;
         meshfix_report r;
         meshfix_result result;
         unsigned int h = 2166136261u;
@@ -61,13 +62,14 @@ static void run(const char *name, const mio_mesh *g)
         char text[32];
         memset(&o, 0, sizeof(o));
         o.policy = policies[p];
-        o.vertex_normals = g->positions; /* normals pointing away from the origin: evidence to weigh */
-        o.flipped = flipped;
-        o.patch_ids = ids;
-        o.patch_confidence = confidence;
-        o.patch_confidence_capacity = 64;
+        o.evidence.vertex_normals = g->positions; /* normals pointing away from the origin: evidence to weigh */
+        memset(&outputs, 0, sizeof(outputs));
+        outputs.flipped = flipped;
+        outputs.patch_ids = ids;
+        outputs.patch_confidence = confidence;
+        outputs.patch_confidence_capacity = 64;
         memset(confidence, 0, sizeof(confidence));
-        result = meshfix_orient(out, g->indices, g->index_count, g->positions, g->vertex_count, 12, &o, &r);
+        result = meshfix_orient(out, g->indices, g->index_count, g->positions, g->vertex_count, 12, &o, &r, &outputs);
         snprintf(text, sizeof(text), "%d", (int)result);
         h = digest_bytes(h, text, strlen(text));
         if (result == MESHFIX_OK) {
@@ -75,7 +77,7 @@ static void run(const char *name, const mio_mesh *g)
             h = digest_bytes(h, flipped, triangles);
             h = digest_bytes(h, ids, triangles * sizeof(unsigned int));
             /* confidences to one decimal: a measure, not a decision */
-            for (i = 0; i < 64 && i < r.patches; ++i) {
+            for (i = 0; i < 64 && i < r.mesh.patches; ++i) {
                 snprintf(text, sizeof(text), "%.1f", (double)confidence[i]);
                 h = digest_bytes(h, text, strlen(text));
             }

@@ -54,6 +54,9 @@ check "double include"                   sh -c "$CC -std=c99 $STRICT tests/compi
 check "MESHFIX_STATIC in two units"      sh -c "$CC -std=c99 $STRICT tests/compile/static_a.c tests/compile/static_b.c -o $out/static -lm && $out/static"
 check "C implementation, C++ caller"     sh -c "$CC -std=c99 $STRICT -c tests/compile/linkage_impl.c -o $out/impl.o && $CXX $STRICT -c tests/compile/linkage_use.cpp -o $out/use.o && $CXX $out/impl.o $out/use.o -o $out/linkage -lm && $out/linkage"
 
+# the C suites (Makefile SUITES), each also built with -O3 -ffast-math, -m32 and under valgrind
+SUITES="test_meshfix test_sdf test_visibility test_hostile test_trust test_api"
+
 suite "unit, property and real-model tests" build/test_meshfix
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_meshfix_asan
 suite "SDF policy on the six shapes" build/test_sdf
@@ -64,14 +67,16 @@ suite "hostile input, allocation failure, adversarial sizes" build/test_hostile
 MESHFIX_ADVERSARIAL_N=20000 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_hostile_asan
 suite "trust: correct meshes unchanged, open parts, assemblies and cut cavities right" build/test_trust
 suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_trust_asan
+suite "API 0.2: engine vertex buffers, index and position formats, check, verdict" build/test_api
+suite "the same under AddressSanitizer + UndefinedBehaviorSanitizer" build/test_api_asan
 suite "the generated scenes are what they claim" sh -c "$CC -std=c99 -O2 -I. -o $out/scenes_check tests/eval/scenes_check.c -lm && $out/scenes_check"
-for t in test_meshfix test_sdf test_visibility test_hostile test_trust; do
+for t in $SUITES; do
     suite "$t built with -O3 -ffast-math (NaN tests on bit patterns)" build/${t}_fast
 done
 
 # 32-bit: size_t of 4 bytes, x87 floating point
 if echo 'int main(void){return 0;}' | $CC -m32 -x c - -o "$out/m32probe" >/dev/null 2>&1; then
-    for t in test_meshfix test_sdf test_visibility test_hostile test_trust; do
+    for t in $SUITES; do
         if $MAKE -s build/${t}_m32 >"$out/m32build.log" 2>&1; then
             suite "$t built with -m32" build/${t}_m32
         else
@@ -114,7 +119,7 @@ suite "OpenMesh as oracle" build/test_openmesh
 if command -v valgrind >/dev/null 2>&1; then
     # memcheck: any error or leak fails the run (exit code 99)
     VG="valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect"
-    for t in test_meshfix test_sdf test_visibility test_hostile test_trust; do
+    for t in $SUITES; do
         MESHFIX_ADVERSARIAL_N=5000 suite "valgrind memcheck: $t" $VG build/$t
     done
 else
@@ -129,6 +134,13 @@ check "meshfix CLI: every format round-trips" sh -c "for f in obj off stl ply; d
 
 suite "command-line tool: misuse, crafted and odd files" bash tests/test_cli.sh
 check "sdf_demo repairs its scene (exit 0: consistent, outward)" sh -c "build/sdf_demo $out/sdf.obj >/dev/null && build/meshfix --inspect $out/sdf.obj | grep -q 'inconsistent 0'"
+
+echo "== docs are code: README.md's snippets and the header's quick start"
+docs_log="$out/docs.log"
+CC="$CC" CXX="$CXX" bash tests/docs.sh build/docs >"$docs_log" 2>&1
+cat "$docs_log"
+passed=$((passed + $(grep -c '^ok ' "$docs_log")))
+failed=$((failed + $(grep -c '^FAIL ' "$docs_log")))
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

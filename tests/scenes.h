@@ -493,9 +493,9 @@ static int scene_closed_patches(const mio_mesh *m, const unsigned int *patch_id,
         for (t = 0, n = 0; t < m->index_count / 3; ++t)
             if (patch_id[t] == p)
                 memcpy(sub + 3 * n++, m->indices + 3 * t, 3 * sizeof(unsigned int));
-        closed[p] = meshfix_inspect(sub, 3 * n, m->positions, m->vertex_count, 12, &r) == MESHFIX_OK &&
-                    r.edges_boundary == 0 && r.edges_non_manifold == 0 && r.edges_inconsistent == 0 && n > 0;
-        inverted[p] = r.signed_volume < 0;
+        closed[p] = meshfix_inspect(sub, 3 * n, m->positions, m->vertex_count, 12, NULL, &r, NULL) == MESHFIX_OK &&
+                    r.mesh.edges_boundary == 0 && r.mesh.edges_non_manifold == 0 && r.mesh.edges_inconsistent == 0 && n > 0;
+        inverted[p] = r.mesh.signed_volume < 0;
     }
     free(sub);
     return 1;
@@ -513,6 +513,7 @@ static int scene_make_closed(mio_mesh *m)
     unsigned char *keep = (unsigned char *)malloc(triangles + 1), *flip = (unsigned char *)malloc(triangles + 1);
     unsigned char *closed = (unsigned char *)malloc(triangles + 1), *inverted = (unsigned char *)malloc(triangles + 1);
     meshfix_options o;
+    meshfix_outputs outputs;
     meshfix_report r;
     int result = 0;
     if (remap == NULL || patch_id == NULL || keep == NULL || flip == NULL || closed == NULL || inverted == NULL)
@@ -531,18 +532,19 @@ static int scene_make_closed(mio_mesh *m)
     /* the seed policy only makes each patch consistent: which way a patch
        faces is decided below, by its volume */
     memset(&o, 0, sizeof(o));
+    memset(&outputs, 0, sizeof(outputs));
     o.policy = MESHFIX_POLICY_SEED;
-    o.patch_ids = patch_id;
-    if (meshfix_orient(m->indices, m->indices, m->index_count, m->positions, m->vertex_count, 12, &o, &r) != MESHFIX_OK ||
-        !scene_closed_patches(m, patch_id, r.patches, closed, inverted))
+    outputs.patch_ids = patch_id;
+    if (meshfix_orient(m->indices, m->indices, m->index_count, m->positions, m->vertex_count, 12, &o, &r, &outputs) != MESHFIX_OK ||
+        !scene_closed_patches(m, patch_id, r.mesh.patches, closed, inverted))
         goto done;
     for (t = 0; t < triangles; ++t) {
         keep[t] = closed[patch_id[t]];
         flip[t] = inverted[patch_id[t]];
     }
     scene_keep(m, keep, flip);
-    result = meshfix_inspect(m->indices, m->index_count, m->positions, m->vertex_count, 12, &r) == MESHFIX_OK &&
-                     r.edges_boundary == 0 && r.edges_inconsistent == 0 && r.patches_inside_out == 0 && r.triangles > 0
+    result = meshfix_inspect(m->indices, m->index_count, m->positions, m->vertex_count, 12, NULL, &r, NULL) == MESHFIX_OK &&
+                     r.mesh.edges_boundary == 0 && r.mesh.edges_inconsistent == 0 && r.mesh.patches_inside_out == 0 && r.mesh.triangles > 0
                  ? 1
                  : -1;
 done:

@@ -35,8 +35,8 @@ static meshfix_options policy_options(int i)
     meshfix_options o;
     memset(&o, 0, sizeof(o));
     o.policy = policies[i];
-    o.sdf = cheap_sdf;
-    o.visibility_rays = 4096;
+    o.sdf.distance = cheap_sdf;
+    o.visibility.rays = 4096;
     return o;
 }
 
@@ -51,6 +51,7 @@ typedef struct guarded {
     float *confidence, *confidence_copy;
     meshfix_component components[4], components_copy[4];
     meshfix_report report, report_copy;
+    meshfix_outputs outputs;
     size_t index_count;
 } guarded;
 
@@ -86,14 +87,15 @@ static void guard(guarded *g, const unsigned int *indices, size_t index_count)
     g->report_copy = g->report;
 }
 
-static void attach(guarded *g, meshfix_options *o)
+static void attach(guarded *g)
 {
-    o->flipped = g->flipped;
-    o->patch_ids = g->patch_ids;
-    o->patch_confidence = g->confidence;
-    o->patch_confidence_capacity = REAL_COUNT(g->index_count) / 3 + 1;
-    o->components = g->components;
-    o->components_capacity = 4;
+    memset(&g->outputs, 0, sizeof(g->outputs));
+    g->outputs.flipped = g->flipped;
+    g->outputs.patch_ids = g->patch_ids;
+    g->outputs.patch_confidence = g->confidence;
+    g->outputs.patch_confidence_capacity = REAL_COUNT(g->index_count) / 3 + 1;
+    g->outputs.components = g->components;
+    g->outputs.components_capacity = 4;
 }
 
 static int untouched(const guarded *g)
@@ -126,19 +128,19 @@ static void expect_refusal(const char *what, const unsigned int *indices, size_t
         meshfix_options o = policy_options(p);
         meshfix_result r;
         guard(&g, indices, index_count);
-        attach(&g, &o);
+        attach(&g);
         r = meshfix_orient(g.destination, indices != NULL ? g.indices : NULL, index_count, positions, vertex_count,
-                           stride, &o, &g.report);
+                           stride, &o, &g.report, &g.outputs);
         if (r != expected)
             printf("    %s, policy %d: %s\n", what, (int)o.policy, meshfix_result_string(r));
         CHECK_EQ(r, expected);
         CHECK(untouched(&g));
         r = meshfix_orient(indices != NULL ? g.indices : NULL, indices != NULL ? g.indices : NULL, index_count,
-                           positions, vertex_count, stride, &o, &g.report);
+                           positions, vertex_count, stride, &o, &g.report, &g.outputs);
         CHECK_EQ(r, expected);
         CHECK(untouched(&g));
-        r = meshfix_inspect_ex(indices != NULL ? g.indices : NULL, index_count, positions, vertex_count, stride, &o,
-                               &g.report);
+        r = meshfix_inspect(indices != NULL ? g.indices : NULL, index_count, positions, vertex_count, stride, &o,
+                               &g.report, &g.outputs);
         if (expected != MESHFIX_ERROR_POSITIONS_REQUIRED && expected != MESHFIX_ERROR_INVALID_ARGUMENT)
             CHECK_EQ(r, expected);
         if (r != MESHFIX_OK)
@@ -162,7 +164,6 @@ static void test_matrix_refusals(void)
     expect_refusal("11 indices", tetra_i, 11, tetra_p, 4, 12, MESHFIX_ERROR_NOT_TRIANGLES);
     expect_refusal("1 index", tetra_i, 1, tetra_p, 4, 12, MESHFIX_ERROR_NOT_TRIANGLES);
     expect_refusal("NULL indices", NULL, 12, tetra_p, 4, 12, MESHFIX_ERROR_INVALID_ARGUMENT);
-    expect_refusal("stride 0", tetra_i, 12, tetra_p, 4, 0, MESHFIX_ERROR_INVALID_ARGUMENT);
     expect_refusal("stride 8", tetra_i, 12, tetra_p, 4, 8, MESHFIX_ERROR_INVALID_ARGUMENT);
     expect_refusal("stride 13", tetra_i, 12, tetra_p, 4, 13, MESHFIX_ERROR_INVALID_ARGUMENT);
     expect_refusal("no vertices", tetra_i, 12, tetra_p, 0, 12, MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
@@ -182,17 +183,17 @@ static void test_matrix_refusals(void)
         guarded g;
         meshfix_options o = policy_options(3);
         guard(&g, tetra_i, 12);
-        attach(&g, &o);
-        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, NULL, 4, 0, &o, &g.report),
+        attach(&g);
+        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, NULL, 4, 0, &o, &g.report, &g.outputs),
                  MESHFIX_ERROR_POSITIONS_REQUIRED);
         CHECK(untouched(&g));
         o = policy_options(6);
-        o.sdf = NULL;
-        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report),
+        o.sdf.distance = NULL;
+        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report, &g.outputs),
                  MESHFIX_ERROR_INVALID_ARGUMENT);
         o = policy_options(0);
-        o.allocator.alloc_fn = (void *(*)(size_t, void *))0x1; /* alloc without free: refused before use */
-        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report),
+        o.memory.alloc_func = (void *(*)(size_t, void *))0x1; /* alloc without free: refused before use */
+        CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report, &g.outputs),
                  MESHFIX_ERROR_INVALID_ARGUMENT);
         CHECK(untouched(&g));
         unguard(&g);
@@ -222,13 +223,13 @@ static void expect_repair(const char *what, const unsigned int *indices, size_t 
         meshfix_report r, again;
         unsigned int *out = (unsigned int *)malloc(index_count * sizeof(unsigned int) + 4);
         meshfix_result result =
-            meshfix_orient(out, indices, index_count, positions, vertex_count, 12, &o, &r);
+            meshfix_orient(out, indices, index_count, positions, vertex_count, 12, &o, &r, NULL);
         if (result != MESHFIX_OK)
             printf("    %s, policy %d: %s\n", what, p, meshfix_result_string(result));
         CHECK_EQ(result, MESHFIX_OK);
         if (result == MESHFIX_OK && o.policy != MESHFIX_POLICY_SDF) {
             /* a second pass changes nothing */
-            CHECK_EQ(meshfix_orient(out, out, index_count, positions, vertex_count, 12, &o, &again), MESHFIX_OK);
+            CHECK_EQ(meshfix_orient(out, out, index_count, positions, vertex_count, 12, &o, &again, NULL), MESHFIX_OK);
             CHECK_EQ(again.triangles_flipped, 0);
         }
         *last = r;
@@ -243,27 +244,27 @@ static void test_matrix_accepted(void)
     unsigned int *idx;
     size_t t, k;
     /* zero triangles, NULL everywhere */
-    CHECK_EQ(meshfix_orient(NULL, NULL, 0, NULL, 0, 0, NULL, &r), MESHFIX_OK);
+    CHECK_EQ(meshfix_orient(NULL, NULL, 0, NULL, 0, 0, NULL, &r, NULL), MESHFIX_OK);
     CHECK_EQ(meshfix_weld(NULL, NULL, 0, 0, 0.0f, NULL, NULL), MESHFIX_OK);
     /* NaN and Inf positions: counted, weigh nothing, topology still repaired */
     memcpy(p, tetra_p, sizeof(p));
     p[3] = NAN, p[7] = INFINITY, p[11] = -INFINITY;
     expect_repair("NaN and Inf", tetra_i, 12, p, 4, &r);
-    CHECK_EQ(r.vertices_non_finite, 3);
-    CHECK_EQ(r.edges_inconsistent, 0);
+    CHECK_EQ(r.mesh.vertices_non_finite, 3);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
     /* all degenerate: reported, nothing flipped */
     {
         static const unsigned int degenerate[] = {0, 0, 1, 1, 2, 2, 3, 3, 3, 0, 1, 0};
         expect_repair("all degenerate", degenerate, 12, tetra_p, 4, &r);
-        CHECK_EQ(r.triangles_degenerate, 4);
+        CHECK_EQ(r.mesh.triangles_degenerate, 4);
         CHECK_EQ(r.triangles_flipped, 0);
-        CHECK_EQ(r.patches, 0);
+        CHECK_EQ(r.mesh.patches, 0);
     }
     /* duplicated triangles */
     {
         static const unsigned int dup[] = {0, 1, 2, 0, 1, 2, 2, 1, 0, 1, 2, 0, 0, 1, 3};
         expect_repair("duplicates", dup, 15, tetra_p, 4, &r);
-        CHECK_EQ(r.triangles_duplicate, 3);
+        CHECK_EQ(r.mesh.triangles_duplicate, 3);
     }
     /* an edge shared by k = 3 .. 64 triangles */
     for (k = 3; k <= 64; k = k < 8 ? k + 1 : k * 2) {
@@ -276,16 +277,16 @@ static void test_matrix_accepted(void)
             idx[3 * t] = 0, idx[3 * t + 1] = 1, idx[3 * t + 2] = (unsigned int)(t + 2);
         }
         expect_repair("edge shared by k", idx, 3 * k, many, k + 2, &r);
-        CHECK_EQ(r.edges_non_manifold, 1);
-        CHECK_EQ(r.patches, k);
-        CHECK_EQ(r.components, 1);
+        CHECK_EQ(r.mesh.edges_non_manifold, 1);
+        CHECK_EQ(r.mesh.patches, k);
+        CHECK_EQ(r.mesh.components, 1);
         free(many);
         free(idx);
     }
     /* NULL positions with the topology policies; huge vertex_count, few used */
-    CHECK_EQ(meshfix_orient(NULL, tetra_i, 12, NULL, 0xFFFFFFFFu, 0, NULL, &r), MESHFIX_OK);
-    CHECK_EQ(r.vertices_used, 4);
-    CHECK_EQ(meshfix_inspect(tetra_i, 12, NULL, 4, 0, &r), MESHFIX_OK);
+    CHECK_EQ(meshfix_orient(NULL, tetra_i, 12, NULL, 0xFFFFFFFFu, 0, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.vertices_used, 4);
+    CHECK_EQ(meshfix_inspect(tetra_i, 12, NULL, 4, 0, NULL, &r, NULL), MESHFIX_OK);
 }
 
 /* ---- allocation failure at every allocation ---- */
@@ -321,12 +322,12 @@ static void fail_every_allocation(const char *what, const unsigned int *indices,
         size_t total, n;
         guarded g;
         memset(&a, 0, sizeof(a));
-        o.allocator.alloc_fn = failing_alloc;
-        o.allocator.free_fn = failing_free;
-        o.allocator.user_data = &a;
+        o.memory.alloc_func = failing_alloc;
+        o.memory.free_func = failing_free;
+        o.memory.user_data = &a;
         guard(&g, indices, index_count);
-        attach(&g, &o);
-        CHECK_EQ(meshfix_orient(g.destination, g.indices, index_count, positions, vertex_count, 12, &o, &g.report),
+        attach(&g);
+        CHECK_EQ(meshfix_orient(g.destination, g.indices, index_count, positions, vertex_count, 12, &o, &g.report, &g.outputs),
                  MESHFIX_OK);
         CHECK_EQ(a.live, 0);
         total = a.calls;
@@ -334,10 +335,10 @@ static void fail_every_allocation(const char *what, const unsigned int *indices,
         for (n = 1; n <= total; ++n) {
             meshfix_result r;
             guard(&g, indices, index_count);
-            attach(&g, &o);
+            attach(&g);
             memset(&a, 0, sizeof(a));
             a.fail_at = n;
-            r = meshfix_orient(g.destination, g.indices, index_count, positions, vertex_count, 12, &o, &g.report);
+            r = meshfix_orient(g.destination, g.indices, index_count, positions, vertex_count, 12, &o, &g.report, &g.outputs);
             if (r != MESHFIX_ERROR_OUT_OF_MEMORY || a.live != 0 || !untouched(&g))
                 printf("    %s, policy %d, allocation %lu of %lu: %s, %lu live\n", what, p, (unsigned long)n,
                        (unsigned long)total, meshfix_result_string(r), (unsigned long)a.live);
@@ -354,9 +355,9 @@ static void fail_every_allocation(const char *what, const unsigned int *indices,
         unsigned int *remap = (unsigned int *)malloc(vertex_count * sizeof(unsigned int));
         size_t n;
         memset(&o, 0, sizeof(o));
-        o.allocator.alloc_fn = failing_alloc;
-        o.allocator.free_fn = failing_free;
-        o.allocator.user_data = &a;
+        o.memory.alloc_func = failing_alloc;
+        o.memory.free_func = failing_free;
+        o.memory.user_data = &a;
         for (n = 1; n <= 1; ++n) { /* one block */
             memset(&a, 0, sizeof(a));
             memset(remap, 0x3C, vertex_count * sizeof(unsigned int));
@@ -401,7 +402,7 @@ static void test_adversarial(void)
     int policy;
     unsigned long long seed = 5;
     memset(&o, 0, sizeof(o));
-    o.visibility_rays = 16384;
+    o.visibility.rays = 16384;
     /* one vertex shared by n triangles: a disk fan, half of it reversed */
     p[0] = p[1] = p[2] = 0;
     for (t = 0; t < n; ++t) {
@@ -413,9 +414,9 @@ static void test_adversarial(void)
     }
     for (policy = 0; policy < 2; ++policy) {
         o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
-        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, n + 1, 12, &o, &r), MESHFIX_OK);
-        CHECK_EQ(r.edges_inconsistent, 0);
-        CHECK_EQ(r.patches, 1);
+        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, n + 1, 12, &o, &r, NULL), MESHFIX_OK);
+        CHECK_EQ(r.mesh.edges_inconsistent, 0);
+        CHECK_EQ(r.mesh.patches, 1);
     }
     /* one edge shared by n triangles */
     p[3] = 1, p[4] = 0, p[5] = 0;
@@ -429,18 +430,18 @@ static void test_adversarial(void)
         idx[3 * t + 2] = (unsigned int)(t + 2 <= n + 1 ? t + 2 : 2);
     for (policy = 0; policy < 2; ++policy) {
         o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
-        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, n + 2, 12, &o, &r), MESHFIX_OK);
-        CHECK_EQ(r.edges_non_manifold, 1);
-        CHECK_EQ(r.patches, n);
+        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, n + 2, 12, &o, &r, NULL), MESHFIX_OK);
+        CHECK_EQ(r.mesh.edges_non_manifold, 1);
+        CHECK_EQ(r.mesh.patches, n);
     }
     /* n coincident triangles */
     for (t = 0; t < n; ++t)
         idx[3 * t] = 0, idx[3 * t + 1] = t % 2 ? 1 : 2, idx[3 * t + 2] = t % 2 ? 2 : 1;
     for (policy = 0; policy < 2; ++policy) {
         o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
-        CHECK_EQ(meshfix_orient(NULL, idx, 3 * n, p, n + 2, 12, &o, &r), MESHFIX_OK);
-        CHECK_EQ(r.triangles_duplicate, n - 1);
-        CHECK_EQ(r.edges, 3);
+        CHECK_EQ(meshfix_orient(NULL, idx, 3 * n, p, n + 2, 12, &o, &r, NULL), MESHFIX_OK);
+        CHECK_EQ(r.mesh.triangles_duplicate, n - 1);
+        CHECK_EQ(r.mesh.edges, 3);
     }
     /* a soup: every triangle its own patch, random positions */
     for (t = 0; t < 3 * n; ++t)
@@ -451,8 +452,8 @@ static void test_adversarial(void)
         p[t] = (float)gen_uniform(&seed);
     for (policy = 0; policy < 2; ++policy) {
         o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
-        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, 3 * n, 12, &o, &r), MESHFIX_OK);
-        CHECK_EQ(r.patches, n);
+        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, 3 * n, 12, &o, &r, NULL), MESHFIX_OK);
+        CHECK_EQ(r.mesh.patches, n);
     }
     free(p);
     free(idx);
@@ -472,11 +473,11 @@ static void test_adversarial(void)
                 g.indices[12 * s + k] = tetra_i[k] + (unsigned int)(4 * s);
         }
         gen_flip_random(&g, 0.5, 3, NULL);
-        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r),
+        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r, NULL),
                  MESHFIX_OK);
-        CHECK_EQ(r.patches_inside_out, 0);
-        CHECK_EQ(r.shells_inward, 0);
-        CHECK_EQ(r.edges_inconsistent, 0);
+        CHECK_EQ(r.mesh.patches_inside_out, 0);
+        CHECK_EQ(r.evidence.shells_inward, 0);
+        CHECK_EQ(r.mesh.edges_inconsistent, 0);
         mio_free(&g);
     }
 }
@@ -563,7 +564,7 @@ static void test_deep_tree(void)
     free(arena.base);
     for (p = 0; p < POLICIES; ++p) {
         o = policy_options(p);
-        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
+        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL),
                  MESHFIX_OK);
     }
     free(block);
@@ -576,24 +577,31 @@ static void test_deep_tree(void)
 static void test_option_ranges(void)
 {
     int field, p;
-    for (field = 0; field < 9; ++field)
+    for (field = 0; field < 15; ++field)
         for (p = 0; p < POLICIES; ++p) {
             guarded g;
             meshfix_options o = policy_options(p);
             guard(&g, tetra_i, 12);
-            attach(&g, &o);
+            attach(&g);
             switch (field) {
-            case 0: o.visibility_rays = sizeof(size_t) > 4 ? (size_t)0xFFFFFFFFu + 65u : (size_t)0xFFFFFFFFu; break;
-            case 1: o.visibility_rays = ((size_t)1 << 24) + 1; break;
-            case 2: o.visibility_min_samples = 1u << 20; break;
-            case 3: o.coherence_distance = NAN; break;
-            case 4: o.visibility_eps = -1.0f; break;
-            case 5: o.visibility_kv = INFINITY; break;
+            case 0: o.visibility.rays = sizeof(size_t) > 4 ? (size_t)0xFFFFFFFFu + 65u : (size_t)0xFFFFFFFFu; break;
+            case 1: o.visibility.rays = ((size_t)1 << 24) + 1; break;
+            case 2: o.visibility.min_samples = 1u << 20; break;
+            case 3: o.visibility.coherence_distance = NAN; break;
+            case 4: o.visibility.eps = -1.0f; break;
+            case 5: o.visibility.kv = INFINITY; break;
             case 6: o.up[1] = NAN; break;
-            case 7: o.sdf_step = -INFINITY; break;
-            default: o.sdf_mode = (meshfix_sdf_mode)7; o.policy = MESHFIX_POLICY_SDF; break;
+            case 7: o.sdf.step = -INFINITY; break;
+            /* fuzz_stress findings 2 and 4 */
+            case 8: o.evidence.sigma = INFINITY; break;
+            case 9: o.evidence.min_confidence = NAN; break;
+            case 10: o.evidence.min_confidence = 1.5f; break;
+            case 11: o.evidence.triangle_normals = tetra_p, o.evidence.triangle_normals_stride = 13; break;
+            case 12: o.evidence.vertex_normals = tetra_p, o.evidence.vertex_normals_stride = 8; break;
+            case 13: o.index_size = 1; break;
+            default: o.sdf.mode = (meshfix_sdf_mode)7; o.policy = MESHFIX_POLICY_SDF; break;
             }
-            CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report),
+            CHECK_EQ(meshfix_orient(g.destination, g.indices, 12, tetra_p, 4, 12, &o, &g.report, &g.outputs),
                      MESHFIX_ERROR_INVALID_ARGUMENT);
             CHECK(untouched(&g));
             unguard(&g);
@@ -612,11 +620,11 @@ static void test_report_shares_options(void)
     size_t size = meshfix_scratch_size(12, 4, NULL);
     void *scratch = malloc(size);
     memset(&shared, 0, sizeof(shared));
-    shared.options.scratch = scratch;
-    shared.options.scratch_size = size;
+    shared.options.memory.scratch = scratch;
+    shared.options.memory.scratch_size = size;
     shared.options.policy = MESHFIX_POLICY_MAJORITY;
-    CHECK_EQ(meshfix_orient(out, tetra_i, 12, tetra_p, 4, 12, &shared.options, &shared.report), MESHFIX_OK);
-    CHECK_EQ(shared.report.triangles, 4);
+    CHECK_EQ(meshfix_orient(out, tetra_i, 12, tetra_p, 4, 12, &shared.options, &shared.report, NULL), MESHFIX_OK);
+    CHECK_EQ(shared.report.mesh.triangles, 4);
     free(scratch);
 }
 
@@ -631,12 +639,12 @@ static void test_overlapping_destination(void)
     gen_flip_random(&g, 0.4, 11, NULL);
     expected = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
     buffer = (unsigned int *)malloc((g.index_count + 16) * sizeof(unsigned int));
-    CHECK_EQ(meshfix_orient(expected, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, NULL),
+    CHECK_EQ(meshfix_orient(expected, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, NULL, NULL),
              MESHFIX_OK);
     for (shift = -6; shift <= 6; ++shift) {
         unsigned int *in = buffer + 8, *out = buffer + 8 + shift;
         memcpy(in, g.indices, g.index_count * sizeof(unsigned int));
-        CHECK_EQ(meshfix_orient(out, in, g.index_count, g.positions, g.vertex_count, 12, NULL, NULL), MESHFIX_OK);
+        CHECK_EQ(meshfix_orient(out, in, g.index_count, g.positions, g.vertex_count, 12, NULL, NULL, NULL), MESHFIX_OK);
         CHECK(memcmp(out, expected, g.index_count * sizeof(unsigned int)) == 0);
     }
     free(expected);
@@ -669,8 +677,9 @@ static void weld_one_bucket(const float *positions, size_t n, float tolerance, u
     meshfix__welder w;
     unsigned int *block = (unsigned int *)malloc((1 + 5 * n) * sizeof(unsigned int));
     memset(&w, 0, sizeof(w));
-    w.positions = (const char *)positions;
+    w.positions = (const unsigned char *)positions;
     w.stride = 12;
+    w.position_size = 4;
     w.cell = (double)tolerance * (1.0 + 1e-9);
     w.mask = 0;
     w.bucket_end = block;
@@ -727,9 +736,9 @@ static void test_duplicates_on_crowded_edges(void)
                 /* the copy, rotated and reversed */
                 idx[3 * (triangles + t)] = c, idx[3 * (triangles + t) + 1] = b, idx[3 * (triangles + t) + 2] = a;
             }
-    CHECK_EQ(meshfix_inspect(idx, 6 * triangles, p, k, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.triangles_duplicate, triangles);
-    CHECK_EQ(r.edges_non_manifold, (size_t)k * (k - 1) / 2);
+    CHECK_EQ(meshfix_inspect(idx, 6 * triangles, p, k, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.triangles_duplicate, triangles);
+    CHECK_EQ(r.mesh.edges_non_manifold, (size_t)k * (k - 1) / 2);
     free(idx);
     free(p);
 }
@@ -763,9 +772,9 @@ static void test_non_finite_soup(void)
     }
     for (policy = 0; policy < POLICIES; ++policy) {
         meshfix_options o = policy_options(policy);
-        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, 3 * n, 12, &o, &r), MESHFIX_OK);
-        CHECK_EQ(r.vertices_non_finite, bad);
-        CHECK(r.area - r.area == 0.0 && r.area > 0.0);
+        CHECK_EQ(meshfix_orient(idx, idx, 3 * n, p, 3 * n, 12, &o, &r, NULL), MESHFIX_OK);
+        CHECK_EQ(r.mesh.vertices_non_finite, bad);
+        CHECK(r.mesh.area - r.mesh.area == 0.0 && r.mesh.area > 0.0);
     }
     {
         unsigned int remap[3];
@@ -775,6 +784,141 @@ static void test_non_finite_soup(void)
     }
     free(p);
     free(idx);
+}
+
+/* ---- what fuzz_stress found (tests/fuzz/crashes/README.md) ---- */
+
+/* Finding 1: two fans of three triangles on one edge each are two
+   components of three triangles (the renumbering walked ids as parents). */
+static void test_components_of_two_fans(void)
+{
+    static const unsigned int idx[18] = {0, 1, 2, 0, 1, 3, 0, 1, 4, 5, 6, 7, 5, 6, 8, 5, 6, 9};
+    meshfix_component c[4];
+    meshfix_outputs outputs = {0};
+    meshfix_report r;
+    outputs.components = c, outputs.components_capacity = 4;
+    CHECK_EQ(meshfix_inspect(idx, 18, NULL, 10, 0, NULL, &r, &outputs), MESHFIX_OK);
+    CHECK_EQ(r.mesh.patches, 6);
+    CHECK_EQ(r.mesh.components, 2);
+    CHECK_EQ(r.mesh.euler_characteristic, 2);
+    CHECK_EQ(c[0].triangles, 3);
+    CHECK_EQ(c[1].triangles, 3);
+    CHECK_EQ(c[1].first_triangle, 3);
+}
+
+/* An allocator whose fresh blocks hold a given byte: a result that reads
+   memory nobody wrote changes with it. */
+static void *garbage_alloc(size_t size, void *user)
+{
+    void *p = malloc(size);
+    if (p != NULL)
+        memset(p, *(const unsigned char *)user, size);
+    return p;
+}
+
+static void garbage_free(void *p, void *user)
+{
+    (void)user;
+    free(p);
+}
+
+/* Finding 5: a segment too long for the coherence grid kept an unwritten
+   distance, and a neighbour that chose it compared against garbage. The
+   finding's mesh, and scenes, under every policy, with fresh memory
+   filled two ways: the same answer. */
+static void test_no_reads_of_unwritten_memory(void)
+{
+    enum { TINY = 60 };
+    static float p[3 * (6 + 3 * TINY)];
+    static unsigned int idx[3 * (2 + TINY)];
+    static const float two[18] = {0, 0, 0, 0.31f, 0, 0, 0.155f, 0.05f, 0,
+                                  0.145f, -0.005f, 0, 0.155f, -0.01f, 0, 0.165f, -0.005f, 0};
+    unsigned int v = 0, n = 0, i, k;
+    int policy;
+    for (i = 0; i < 18; ++i)
+        p[i] = two[i];
+    for (i = 0; i < 6; ++i)
+        idx[n++] = v++;
+    for (i = 0; i < TINY; ++i) { /* tiny triangles up to x = 1: a small mean edge */
+        float x = 0.4f + 0.6f * (float)i / (TINY - 1);
+        float q[9];
+        q[0] = x, q[1] = 0.5f, q[2] = 0, q[3] = x + 0.001f, q[4] = 0.5f, q[5] = 0, q[6] = x, q[7] = 0.501f, q[8] = 0;
+        for (k = 0; k < 9; ++k)
+            p[3 * v + k] = q[k];
+        idx[n++] = v, idx[n++] = v + 1, idx[n++] = v + 2;
+        v += 3;
+    }
+    /* every policy, and VISIBILITY once more with coherence alone (finding 3) */
+    for (policy = 0; policy <= (int)MESHFIX_POLICY_COUNT; ++policy) {
+        unsigned char fill[2] = {0x00, 0xFF};
+        unsigned int out[2][3 * (2 + TINY)];
+        float confidence[2][64];
+        meshfix_report r[2];
+        int run;
+        if (policy == MESHFIX_POLICY_SDF)
+            continue;
+        for (run = 0; run < 2; ++run) {
+            meshfix_options o = {0};
+            meshfix_outputs outputs = {0};
+            o.policy = policy == (int)MESHFIX_POLICY_COUNT ? MESHFIX_POLICY_VISIBILITY : (meshfix_policy)policy;
+            o.visibility.flags = policy == (int)MESHFIX_POLICY_COUNT ? MESHFIX_VISIBILITY_COHERENCE_ONLY : 0u;
+            o.visibility.rays = o.policy == MESHFIX_POLICY_VISIBILITY ? 2000 : 0;
+            o.evidence.triangle_normals = policy == MESHFIX_POLICY_NORMALS ? p : NULL;
+            o.memory.alloc_func = garbage_alloc, o.memory.free_func = garbage_free, o.memory.user_data = &fill[run];
+            outputs.patch_confidence = confidence[run], outputs.patch_confidence_capacity = 64;
+            memset(confidence[run], 0, sizeof(confidence[run]));
+            CHECK_EQ(meshfix_orient(out[run], idx, n, p, v, 0, &o, &r[run], &outputs), MESHFIX_OK);
+        }
+        CHECK(memcmp(out[0], out[1], n * sizeof(unsigned int)) == 0);
+        CHECK(memcmp(&r[0], &r[1], sizeof(r[0])) == 0);
+        CHECK(memcmp(confidence[0], confidence[1], sizeof(confidence[0])) == 0);
+    }
+}
+
+/* Finding 6: the geometric stage's arena was counted short for tiny
+   meshes. One triangle, a quad, two triangles apart, a tetrahedron: under
+   every policy, in scratch of exactly meshfix_scratch_size() bytes, with
+   an allocator that must not be called. */
+static void *forbidden_alloc(size_t size, void *user)
+{
+    (void)size;
+    ++*(int *)user;
+    return NULL;
+}
+
+static void test_tiny_meshes_in_exact_scratch(void)
+{
+    static const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 5, 5, 5, 6, 5, 5, 5, 6, 5};
+    static const unsigned int one[] = {0, 1, 2}, quad[] = {0, 1, 2, 0, 2, 3}, apart[] = {0, 1, 2, 4, 5, 6};
+    static const struct {
+        const unsigned int *indices;
+        size_t count;
+        const float *positions;
+        size_t vertices;
+    } meshes[] = {{one, 3, p, 3}, {quad, 6, p, 4}, {apart, 6, p, 7}, {tetra_i, 12, tetra_p, 4}};
+    size_t k;
+    int policy;
+    for (k = 0; k < sizeof(meshes) / sizeof(meshes[0]); ++k)
+        for (policy = 0; policy < (int)MESHFIX_POLICY_COUNT; ++policy) {
+            meshfix_options o = {0};
+            unsigned int out[12];
+            size_t size;
+            void *scratch;
+            int calls = 0;
+            if (policy == MESHFIX_POLICY_SDF)
+                continue;
+            o.policy = (meshfix_policy)policy;
+            o.evidence.vertex_normals = meshes[k].positions;
+            size = meshfix_scratch_size(meshes[k].count, meshes[k].vertices, &o);
+            scratch = malloc(size);
+            o.memory.scratch = scratch, o.memory.scratch_size = size;
+            o.memory.alloc_func = forbidden_alloc, o.memory.free_func = garbage_free, o.memory.user_data = &calls;
+            CHECK_EQ(meshfix_orient(out, meshes[k].indices, meshes[k].count, meshes[k].positions, meshes[k].vertices, 0,
+                                    &o, NULL, NULL),
+                     MESHFIX_OK);
+            CHECK_EQ(calls, 0);
+            free(scratch);
+        }
 }
 
 static const test_case tests[] = {
@@ -790,6 +934,9 @@ static const test_case tests[] = {
     {"audit: weld with every vertex in one hash bucket", test_weld_one_bucket},
     {"audit: duplicates among triangles whose edges are all non-manifold", test_duplicates_on_crowded_edges},
     {"audit: NaN, Inf and FLT_MAX soup classified by bits", test_non_finite_soup},
+    {"fuzz: two fans on two edges are two components", test_components_of_two_fans},
+    {"fuzz: fresh memory filled two ways gives the same answer under every policy", test_no_reads_of_unwritten_memory},
+    {"fuzz: tiny meshes in exact scratch under every policy, no allocation", test_tiny_meshes_in_exact_scratch},
 };
 
 int main(void)

@@ -56,24 +56,26 @@ static unsigned int *orient_checked(const unsigned int *indices, size_t index_co
                                     size_t vertex_count, size_t stride, meshfix_policy policy, meshfix_report *report)
 {
     meshfix_options o;
+    meshfix_outputs outputs;
     meshfix_report again;
     unsigned int *out = (unsigned int *)malloc(index_count * sizeof(unsigned int) + 1);
     unsigned int *in_place = copy_indices(indices, index_count), *second = copy_indices(indices, index_count);
     unsigned char *flipped = (unsigned char *)malloc(index_count / 3 + 1);
     size_t t, flagged = 0;
     memset(&o, 0, sizeof(o));
+    memset(&outputs, 0, sizeof(outputs));
     o.policy = policy;
-    o.flipped = flipped;
-    CHECK_EQ(meshfix_orient(out, indices, index_count, positions, vertex_count, stride, &o, report), MESHFIX_OK);
+    outputs.flipped = flipped;
+    CHECK_EQ(meshfix_orient(out, indices, index_count, positions, vertex_count, stride, &o, report, &outputs), MESHFIX_OK);
     CHECK_EQ(count_swapped(indices, out, index_count), report->triangles_flipped);
     for (t = 0; t < index_count / 3; ++t)
         flagged += flipped[t];
     CHECK_EQ(flagged, report->triangles_flipped);
-    o.flipped = NULL;
-    CHECK_EQ(meshfix_orient(in_place, in_place, index_count, positions, vertex_count, stride, &o, &again), MESHFIX_OK);
+    outputs.flipped = NULL;
+    CHECK_EQ(meshfix_orient(in_place, in_place, index_count, positions, vertex_count, stride, &o, &again, &outputs), MESHFIX_OK);
     CHECK(memcmp(in_place, out, index_count * sizeof(unsigned int)) == 0);
     memcpy(second, out, index_count * sizeof(unsigned int));
-    CHECK_EQ(meshfix_orient(second, second, index_count, positions, vertex_count, stride, &o, &again), MESHFIX_OK);
+    CHECK_EQ(meshfix_orient(second, second, index_count, positions, vertex_count, stride, &o, &again, &outputs), MESHFIX_OK);
     CHECK_EQ(again.triangles_flipped, 0);
     CHECK(memcmp(second, out, index_count * sizeof(unsigned int)) == 0);
     free(in_place);
@@ -103,13 +105,13 @@ static void test_quick_start(void)
         meshfix_report report;
         meshfix_result r = meshfix_orient(indices, indices, index_count,
                                           positions, vertex_count, sizeof(float) * 3,
-                                          NULL, &report);
+                                          NULL, &report, NULL);
         if (r != MESHFIX_OK)
             printf("meshfix: %s\n", meshfix_result_string(r));
         CHECK_EQ(r, MESHFIX_OK);
         CHECK_EQ(report.triangles_flipped, 1);
         CHECK(meshfix_check(indices, index_count, positions, vertex_count,
-                            sizeof(float) * 3, MESHFIX_REQUIRE_SOLID));
+                            sizeof(float) * 3, MESHFIX_REQUIRE_SOLID, NULL, NULL));
     }
 }
 
@@ -117,19 +119,19 @@ static void test_tetrahedron(void)
 {
     meshfix_report r;
     unsigned int in[12], *out;
-    CHECK_EQ(meshfix_inspect(tetra_indices, 12, tetra_positions, 4, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges, 6);
-    CHECK_EQ(r.edges_manifold, 6);
-    CHECK_EQ(r.edges_inconsistent, 0);
-    CHECK_EQ(r.euler_characteristic, 2);
-    CHECK_EQ(r.components_closed, 1);
-    CHECK(fabs(r.signed_volume - 1.0 / 6.0) < 1e-12);
-    CHECK(meshfix_check(tetra_indices, 12, tetra_positions, 4, 12, MESHFIX_REQUIRE_SOLID));
+    CHECK_EQ(meshfix_inspect(tetra_indices, 12, tetra_positions, 4, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges, 6);
+    CHECK_EQ(r.mesh.edges_manifold, 6);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
+    CHECK_EQ(r.mesh.euler_characteristic, 2);
+    CHECK_EQ(r.mesh.components_closed, 1);
+    CHECK(fabs(r.mesh.signed_volume - 1.0 / 6.0) < 1e-12);
+    CHECK(meshfix_check(tetra_indices, 12, tetra_positions, 4, 12, MESHFIX_REQUIRE_SOLID, NULL, NULL));
     /* all four reversed: consistent but inside-out, which OUTWARD undoes */
     memcpy(in, tetra_indices, sizeof(in));
     flip_triangle(in, 0), flip_triangle(in, 1), flip_triangle(in, 2), flip_triangle(in, 3);
-    CHECK(meshfix_check(in, 12, tetra_positions, 4, 12, MESHFIX_REQUIRE_CONSISTENT));
-    CHECK(!meshfix_check(in, 12, tetra_positions, 4, 12, MESHFIX_REQUIRE_OUTWARD));
+    CHECK(meshfix_check(in, 12, tetra_positions, 4, 12, MESHFIX_REQUIRE_CONSISTENT, NULL, NULL));
+    CHECK(!meshfix_check(in, 12, tetra_positions, 4, 12, MESHFIX_REQUIRE_OUTWARD, NULL, NULL));
     out = orient_checked(in, 12, tetra_positions, 4, 12, MESHFIX_POLICY_OUTWARD, &r);
     CHECK_EQ(r.triangles_flipped, 4);
     CHECK(memcmp(out, tetra_indices, sizeof(in)) == 0);
@@ -144,12 +146,12 @@ static void test_cube_one_and_five_flipped(void)
     size_t i;
     memcpy(in, cube_indices, sizeof(in));
     flip_triangle(in, 7);
-    CHECK_EQ(meshfix_inspect(in, 36, cube_positions, 8, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_inconsistent, 3);
+    CHECK_EQ(meshfix_inspect(in, 36, cube_positions, 8, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_inconsistent, 3);
     out = orient_checked(in, 36, cube_positions, 8, 12, MESHFIX_POLICY_AUTO, &r);
     CHECK_EQ(r.triangles_flipped, 1);
-    CHECK_EQ(r.edges_inconsistent, 0);
-    CHECK_EQ(r.edges_inconsistent_input, 3);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
+    CHECK_EQ(r.edges_inconsistent_before, 3);
     CHECK(memcmp(out, cube_indices, sizeof(in)) == 0);
     free(out);
 
@@ -159,7 +161,7 @@ static void test_cube_one_and_five_flipped(void)
     out = orient_checked(in, 36, cube_positions, 8, 12, MESHFIX_POLICY_MAJORITY, &r);
     CHECK_EQ(r.triangles_flipped, 5);
     CHECK(memcmp(out, cube_indices, sizeof(in)) == 0);
-    CHECK(fabs(r.signed_volume - 1.0) < 1e-9);
+    CHECK(fabs(r.mesh.signed_volume - 1.0) < 1e-9);
     free(out);
 }
 
@@ -169,17 +171,17 @@ static void test_open_sheet(void)
     meshfix_report r;
     unsigned int *in, *out;
     CHECK(gen_grid(&g, 8, 6));
-    CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_boundary, 2 * (8 + 6));
-    CHECK_EQ(r.euler_characteristic, 1);
-    CHECK_EQ(r.patches_closed, 0);
-    CHECK_EQ(r.signed_volume, 0);
+    CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_boundary, 2 * (8 + 6));
+    CHECK_EQ(r.mesh.euler_characteristic, 1);
+    CHECK_EQ(r.mesh.patches_closed, 0);
+    CHECK_EQ(r.mesh.signed_volume, 0);
     in = copy_indices(g.indices, g.index_count);
     gen_flip_random(&g, 0.3, 7, NULL);
     /* an open patch under OUTWARD falls back to the majority side */
     out = orient_checked(g.indices, g.index_count, g.positions, g.vertex_count, 12, MESHFIX_POLICY_OUTWARD, &r);
     CHECK(memcmp(out, in, g.index_count * sizeof(unsigned int)) == 0);
-    CHECK_EQ(r.edges_inconsistent, 0);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
     free(in);
     free(out);
     mio_free(&g);
@@ -191,23 +193,25 @@ static void test_mobius_strip(void)
     meshfix_report r;
     meshfix_component c[2];
     meshfix_options o;
+    meshfix_outputs outputs;
     unsigned int *out;
     CHECK(gen_mobius(&g, 24));
     memset(&o, 0, sizeof(o));
-    o.components = c;
-    o.components_capacity = 2;
-    CHECK_EQ(meshfix_inspect_ex(g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r), MESHFIX_OK);
-    CHECK_EQ(r.components, 1);
-    CHECK_EQ(r.components_non_orientable, 1);
-    CHECK_EQ(r.euler_characteristic, 0);
+    memset(&outputs, 0, sizeof(outputs));
+    outputs.components = c;
+    outputs.components_capacity = 2;
+    CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, &outputs), MESHFIX_OK);
+    CHECK_EQ(r.mesh.components, 1);
+    CHECK_EQ(r.mesh.components_non_orientable, 1);
+    CHECK_EQ(r.mesh.euler_characteristic, 0);
     CHECK_EQ(c[0].orientable, 0);
     CHECK_EQ(c[0].closed, 0);
     gen_flip_random(&g, 0.5, 3, NULL);
     out = orient_checked(g.indices, g.index_count, g.positions, g.vertex_count, 12, MESHFIX_POLICY_AUTO, &r);
     /* a Moebius strip cannot be consistent: at least one edge stays, and a
        one-quad-wide strip needs no more than the seam where the fill meets */
-    CHECK(r.edges_inconsistent >= 1 && r.edges_inconsistent <= 2);
-    CHECK_EQ(r.components_non_orientable, 1);
+    CHECK(r.mesh.edges_inconsistent >= 1 && r.mesh.edges_inconsistent <= 2);
+    CHECK_EQ(r.mesh.components_non_orientable, 1);
     free(out);
     mio_free(&g);
 }
@@ -230,8 +234,8 @@ static void test_mobius_seam_independent_of_winding(void)
         memcpy(g.indices, clean, g.index_count * sizeof(unsigned int));
         gen_flip_random(&g, seed / 7.0, seed, NULL);
         out = orient_checked(g.indices, g.index_count, NULL, g.vertex_count, 12, MESHFIX_POLICY_SEED, &r);
-        CHECK_EQ(r.components_non_orientable, 1);
-        CHECK(r.edges_inconsistent >= 1);
+        CHECK_EQ(r.mesh.components_non_orientable, 1);
+        CHECK(r.mesh.edges_inconsistent >= 1);
         if (first == NULL) {
             first = out;
             continue;
@@ -252,18 +256,20 @@ static void test_two_shells(void)
     meshfix_report r;
     meshfix_component c[3];
     meshfix_options o;
+    meshfix_outputs outputs;
     unsigned int *clean, *out;
     CHECK(gen_sphere(&a, 8, 12, 0, 0, 0, 1));
     CHECK(gen_torus(&b, 12, 8, 3, 0.5f));
     CHECK(gen_append(&a, &b));
     clean = copy_indices(a.indices, a.index_count);
     memset(&o, 0, sizeof(o));
-    o.components = c;
-    o.components_capacity = 3;
-    CHECK_EQ(meshfix_inspect_ex(a.indices, a.index_count, a.positions, a.vertex_count, 12, &o, &r), MESHFIX_OK);
-    CHECK_EQ(r.components, 2);
-    CHECK_EQ(r.components_closed, 2);
-    CHECK_EQ(r.euler_characteristic, 2 + 0);
+    memset(&outputs, 0, sizeof(outputs));
+    outputs.components = c;
+    outputs.components_capacity = 3;
+    CHECK_EQ(meshfix_inspect(a.indices, a.index_count, a.positions, a.vertex_count, 12, &o, &r, &outputs), MESHFIX_OK);
+    CHECK_EQ(r.mesh.components, 2);
+    CHECK_EQ(r.mesh.components_closed, 2);
+    CHECK_EQ(r.mesh.euler_characteristic, 2 + 0);
     CHECK_EQ(c[0].euler_characteristic, 2);
     CHECK_EQ(c[1].euler_characteristic, 0);
     CHECK_EQ(c[1].first_triangle, 2 * 12 * 7);
@@ -279,7 +285,7 @@ static void test_two_shells(void)
     }
     out = orient_checked(a.indices, a.index_count, a.positions, a.vertex_count, 12, MESHFIX_POLICY_AUTO, &r);
     CHECK(memcmp(out, clean, a.index_count * sizeof(unsigned int)) == 0);
-    CHECK_EQ(r.patches_inside_out, 0);
+    CHECK_EQ(r.mesh.patches_inside_out, 0);
     free(out);
     free(clean);
     mio_free(&a);
@@ -293,20 +299,20 @@ static void test_non_manifold_fan(void)
     static const unsigned int idx[] = {0, 1, 2, 1, 0, 3, 0, 1, 4, 1, 2, 5};
     meshfix_report r;
     unsigned int *out;
-    CHECK_EQ(meshfix_inspect(idx, 12, p, 6, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_non_manifold, 1);
-    CHECK_EQ(r.edges_inconsistent, 2); /* 0-1 (shared by three) and 1-2 */
-    CHECK_EQ(r.vertices_non_manifold, 2); /* the ends of the edge of three */
-    CHECK_EQ(r.components, 1);
-    CHECK_EQ(r.patches, 3);
-    CHECK_EQ(r.components_closed, 0);
-    CHECK(!meshfix_check(idx, 12, p, 6, 12, MESHFIX_REQUIRE_MANIFOLD));
+    CHECK_EQ(meshfix_inspect(idx, 12, p, 6, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_non_manifold, 1);
+    CHECK_EQ(r.mesh.edges_inconsistent, 2); /* 0-1 (shared by three) and 1-2 */
+    CHECK_EQ(r.mesh.vertices_non_manifold, 2); /* the ends of the edge of three */
+    CHECK_EQ(r.mesh.components, 1);
+    CHECK_EQ(r.mesh.patches, 3);
+    CHECK_EQ(r.mesh.components_closed, 0);
+    CHECK(!meshfix_check(idx, 12, p, 6, 12, MESHFIX_REQUIRE_MANIFOLD, NULL, NULL));
     out = orient_checked(idx, 12, p, 6, 12, MESHFIX_POLICY_MAJORITY, &r);
     /* 1-2-5 runs 1->2 like 0-1-2 does; they tie on area, the seed stays */
     CHECK_EQ(r.triangles_flipped, 1);
     CHECK_EQ(out[10], 5);
     CHECK_EQ(out[11], 2);
-    CHECK_EQ(r.edges_inconsistent, 1); /* the non-manifold edge always counts */
+    CHECK_EQ(r.mesh.edges_inconsistent, 1); /* the non-manifold edge always counts */
     free(out);
 }
 
@@ -316,17 +322,17 @@ static void test_bow_tie_vertex(void)
     static const float p[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1};
     static const unsigned int idx[] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 5, 4, 0, 4, 6, 0, 6, 5, 4, 5, 6};
     meshfix_report r;
-    CHECK_EQ(meshfix_inspect(idx, 24, p, 7, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_non_manifold, 0);
-    CHECK_EQ(r.vertices_non_manifold, 1);
-    CHECK_EQ(r.components, 2);
-    CHECK_EQ(r.euler_characteristic, 4);
-    CHECK(!meshfix_check(idx, 24, p, 7, 12, MESHFIX_REQUIRE_MANIFOLD));
-    CHECK(meshfix_check(idx, 24, p, 7, 12, MESHFIX_REQUIRE_CONSISTENT | MESHFIX_REQUIRE_CLOSED));
-    CHECK_EQ(meshfix_inspect(tetra_indices, 12, tetra_positions, 4, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.vertices_non_manifold, 0);
-    CHECK_EQ(meshfix_inspect(idx, 12, p, 7, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.vertices_non_manifold, 0);
+    CHECK_EQ(meshfix_inspect(idx, 24, p, 7, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_non_manifold, 0);
+    CHECK_EQ(r.mesh.vertices_non_manifold, 1);
+    CHECK_EQ(r.mesh.components, 2);
+    CHECK_EQ(r.mesh.euler_characteristic, 4);
+    CHECK(!meshfix_check(idx, 24, p, 7, 12, MESHFIX_REQUIRE_MANIFOLD, NULL, NULL));
+    CHECK(meshfix_check(idx, 24, p, 7, 12, MESHFIX_REQUIRE_CONSISTENT | MESHFIX_REQUIRE_CLOSED, NULL, NULL));
+    CHECK_EQ(meshfix_inspect(tetra_indices, 12, tetra_positions, 4, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.vertices_non_manifold, 0);
+    CHECK_EQ(meshfix_inspect(idx, 12, p, 7, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.vertices_non_manifold, 0);
 }
 
 static int is_reversal(const unsigned int *a, const unsigned int *b, size_t index_count)
@@ -356,14 +362,14 @@ static void test_ninety_percent_flipped_sphere(void)
     out = orient_checked(g.indices, g.index_count, g.positions, g.vertex_count, 12, MESHFIX_POLICY_OUTWARD, &r);
     CHECK(memcmp(out, clean, g.index_count * sizeof(unsigned int)) == 0);
     CHECK_EQ(r.triangles_flipped, flipped);
-    CHECK_EQ(r.patches_inside_out, 0);
+    CHECK_EQ(r.mesh.patches_inside_out, 0);
     free(out);
     out = orient_checked(g.indices, g.index_count, g.positions, g.vertex_count, 12, MESHFIX_POLICY_AUTO, &r);
     CHECK(memcmp(out, clean, g.index_count * sizeof(unsigned int)) == 0);
     free(out);
     out = orient_checked(g.indices, g.index_count, g.positions, g.vertex_count, 12, MESHFIX_POLICY_MAJORITY, &r);
     CHECK(is_reversal(out, clean, g.index_count));
-    CHECK_EQ(r.patches_inside_out, 1);
+    CHECK_EQ(r.mesh.patches_inside_out, 1);
     free(out);
 
     /* 10% reversed, triangle 0 (the seed) among them */
@@ -375,7 +381,7 @@ static void test_ninety_percent_flipped_sphere(void)
     }
     out = orient_checked(g.indices, g.index_count, g.positions, g.vertex_count, 12, MESHFIX_POLICY_SEED, &r);
     CHECK(is_reversal(out, clean, g.index_count));
-    CHECK_EQ(r.patches_inside_out, 1);
+    CHECK_EQ(r.mesh.patches_inside_out, 1);
     CHECK_EQ(r.triangles_flipped, g.index_count / 3 - flipped);
     free(out);
     out = orient_checked(g.indices, g.index_count, NULL, g.vertex_count, 0, MESHFIX_POLICY_MAJORITY, &r);
@@ -393,15 +399,17 @@ static void test_degenerate_triangles(void)
     static const unsigned int idx[] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 1, 1, 2, 0, 1, 4, 2, 1, 0};
     meshfix_report r;
     meshfix_options o;
+    meshfix_outputs outputs;
     unsigned int patch_ids[7], *out;
     memset(&o, 0, sizeof(o));
-    o.patch_ids = patch_ids;
-    CHECK_EQ(meshfix_inspect_ex(idx, 21, p, 5, 12, &o, &r), MESHFIX_OK);
-    CHECK_EQ(r.triangles_degenerate, 1);
-    CHECK_EQ(r.triangles_zero_area, 1);
-    CHECK_EQ(r.triangles_duplicate, 1);
+    memset(&outputs, 0, sizeof(outputs));
+    outputs.patch_ids = patch_ids;
+    CHECK_EQ(meshfix_inspect(idx, 21, p, 5, 12, &o, &r, &outputs), MESHFIX_OK);
+    CHECK_EQ(r.mesh.triangles_degenerate, 1);
+    CHECK_EQ(r.mesh.triangles_zero_area, 1);
+    CHECK_EQ(r.mesh.triangles_duplicate, 1);
     CHECK_EQ(patch_ids[4], 0xFFFFFFFFu);
-    CHECK(!meshfix_check(idx, 21, p, 5, 12, MESHFIX_REQUIRE_NO_DEGENERATE));
+    CHECK(!meshfix_check(idx, 21, p, 5, 12, MESHFIX_REQUIRE_NO_DEGENERATE, NULL, NULL));
     out = orient_checked(idx, 21, p, 5, 12, MESHFIX_POLICY_AUTO, &r);
     CHECK(memcmp(out + 12, idx + 12, 3 * sizeof(unsigned int)) == 0); /* left as it is */
     free(out);
@@ -416,24 +424,24 @@ static void test_nan_positions(void)
     p[9] = (float)NAN;
     memcpy(in, tetra_indices, sizeof(in));
     flip_triangle(in, 2);
-    CHECK_EQ(meshfix_inspect(in, 12, p, 4, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.vertices_non_finite, 1);
-    CHECK_EQ(r.triangles_zero_area, 3);
+    CHECK_EQ(meshfix_inspect(in, 12, p, 4, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.vertices_non_finite, 1);
+    CHECK_EQ(r.mesh.triangles_zero_area, 3);
     /* the one finite triangle decides by area; topology repairs the rest */
     out = orient_checked(in, 12, p, 4, 12, MESHFIX_POLICY_AUTO, &r);
     CHECK(memcmp(out, tetra_indices, sizeof(in)) == 0);
-    CHECK(r.signed_volume == r.signed_volume);
+    CHECK(r.mesh.signed_volume == r.mesh.signed_volume);
     free(out);
 }
 
 static void test_empty_mesh(void)
 {
     meshfix_report r;
-    CHECK_EQ(meshfix_orient(NULL, NULL, 0, NULL, 0, 0, NULL, &r), MESHFIX_OK);
-    CHECK_EQ(r.triangles, 0);
-    CHECK_EQ(meshfix_inspect(NULL, 0, NULL, 0, 0, &r), MESHFIX_OK);
-    CHECK_EQ(r.components, 0);
-    CHECK(meshfix_check(NULL, 0, NULL, 0, 0, MESHFIX_REQUIRE_CONSISTENT));
+    CHECK_EQ(meshfix_orient(NULL, NULL, 0, NULL, 0, 0, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.triangles, 0);
+    CHECK_EQ(meshfix_inspect(NULL, 0, NULL, 0, 0, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.components, 0);
+    CHECK(meshfix_check(NULL, 0, NULL, 0, 0, MESHFIX_REQUIRE_CONSISTENT, NULL, NULL));
 }
 
 static void test_strides(void)
@@ -454,7 +462,7 @@ static void test_strides(void)
         for (v = 0; v < 8; ++v)
             memcpy(buffer + v * floats, cube_positions + 3 * v, 3 * sizeof(float));
         out = orient_checked(in, 36, buffer, 8, strides[s], MESHFIX_POLICY_OUTWARD, &r);
-        CHECK(fabs(r.signed_volume - 1.0) < 1e-9);
+        CHECK(fabs(r.mesh.signed_volume - 1.0) < 1e-9);
         if (reference == NULL)
             reference = out;
         else {
@@ -474,37 +482,39 @@ static void test_errors_change_nothing(void)
     unsigned char flipped[4] = {9, 9, 9, 9};
     meshfix_report r, sentinel;
     meshfix_options o;
+    meshfix_outputs outputs;
     memset(&sentinel, 0xAB, sizeof(sentinel));
     memcpy(bad, tetra_indices, sizeof(bad));
     bad[7] = 4; /* out of range for 4 vertices */
     memcpy(before, bad, sizeof(bad));
     memset(out, 0xCD, sizeof(out));
     memset(&o, 0, sizeof(o));
-    o.flipped = flipped;
+    memset(&outputs, 0, sizeof(outputs));
+    outputs.flipped = flipped;
     r = sentinel;
-    CHECK_EQ(meshfix_orient(out, bad, 12, tetra_positions, 4, 12, &o, &r), MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
+    CHECK_EQ(meshfix_orient(out, bad, 12, tetra_positions, 4, 12, &o, &r, &outputs), MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
     CHECK(memcmp(&r, &sentinel, sizeof(r)) == 0);
     CHECK_EQ(out[0], 0xCDCDCDCDu);
     CHECK_EQ(flipped[0], 9);
-    CHECK_EQ(meshfix_orient(bad, bad, 12, tetra_positions, 4, 12, &o, &r), MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
+    CHECK_EQ(meshfix_orient(bad, bad, 12, tetra_positions, 4, 12, &o, &r, &outputs), MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
     CHECK(memcmp(bad, before, sizeof(bad)) == 0);
     bad[7] = 0xFFFFFFFFu;
-    CHECK_EQ(meshfix_orient(bad, bad, 12, NULL, 4, 0, NULL, NULL), MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
+    CHECK_EQ(meshfix_orient(bad, bad, 12, NULL, 4, 0, NULL, NULL, NULL), MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
     CHECK_EQ(bad[7], 0xFFFFFFFFu);
-    CHECK_EQ(meshfix_orient(out, tetra_indices, 11, tetra_positions, 4, 12, NULL, &r), MESHFIX_ERROR_NOT_TRIANGLES);
-    CHECK_EQ(meshfix_orient(out, NULL, 12, tetra_positions, 4, 12, NULL, &r), MESHFIX_ERROR_INVALID_ARGUMENT);
-    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, tetra_positions, 4, 8, NULL, &r), MESHFIX_ERROR_INVALID_ARGUMENT);
-    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, tetra_positions, 4, 14, NULL, &r), MESHFIX_ERROR_INVALID_ARGUMENT);
-    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, NULL, &r), MESHFIX_OK);
+    CHECK_EQ(meshfix_orient(out, tetra_indices, 11, tetra_positions, 4, 12, NULL, &r, NULL), MESHFIX_ERROR_NOT_TRIANGLES);
+    CHECK_EQ(meshfix_orient(out, NULL, 12, tetra_positions, 4, 12, NULL, &r, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, tetra_positions, 4, 8, NULL, &r, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, tetra_positions, 4, 14, NULL, &r, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, NULL, &r, NULL), MESHFIX_OK);
     o.policy = MESHFIX_POLICY_OUTWARD;
-    o.flipped = NULL;
-    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, &o, &r), MESHFIX_ERROR_POSITIONS_REQUIRED);
+    outputs.flipped = NULL;
+    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, &o, &r, &outputs), MESHFIX_ERROR_POSITIONS_REQUIRED);
     o.policy = (meshfix_policy)99;
-    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, &o, &r), MESHFIX_ERROR_INVALID_ARGUMENT);
-    CHECK_EQ(meshfix_orient(out, tetra_indices, (size_t)0x80000001, NULL, 4, 0, NULL, &r), MESHFIX_ERROR_TOO_LARGE);
-    CHECK_EQ(meshfix_orient(out, tetra_indices, ((size_t)-1) / 3 * 3, NULL, 4, 0, NULL, &r), MESHFIX_ERROR_TOO_LARGE);
-    CHECK_EQ(meshfix_inspect(tetra_indices, 12, NULL, 4, 0, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
-    CHECK(!meshfix_check(tetra_indices, 12, NULL, 4, 0, MESHFIX_REQUIRE_OUTWARD));
+    CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, &o, &r, &outputs), MESHFIX_ERROR_INVALID_ARGUMENT);
+    CHECK_EQ(meshfix_orient(out, tetra_indices, (size_t)0x80000001, NULL, 4, 0, NULL, &r, NULL), MESHFIX_ERROR_TOO_LARGE);
+    CHECK_EQ(meshfix_orient(out, tetra_indices, ((size_t)-1) / 3 * 3, NULL, 4, 0, NULL, &r, NULL), MESHFIX_ERROR_TOO_LARGE);
+    CHECK_EQ(meshfix_inspect(tetra_indices, 12, NULL, 4, 0, NULL, NULL, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+    CHECK(!meshfix_check(tetra_indices, 12, NULL, 4, 0, MESHFIX_REQUIRE_OUTWARD, NULL, NULL));
     CHECK(strcmp(meshfix_result_string(MESHFIX_ERROR_OUT_OF_MEMORY), "out of memory") == 0);
     CHECK(meshfix_result_string((meshfix_result)1234) != NULL);
     CHECK_EQ(meshfix_scratch_size(0, 4, NULL), 0);
@@ -557,10 +567,10 @@ static void test_allocators(void)
     out = copy_indices(g.indices, g.index_count);
     memset(&a, 0, sizeof(a));
     memset(&o, 0, sizeof(o));
-    o.allocator.alloc_fn = counting_alloc;
-    o.allocator.free_fn = counting_free;
-    o.allocator.user_data = &a;
-    CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r), MESHFIX_OK);
+    o.memory.alloc_func = counting_alloc;
+    o.memory.free_func = counting_free;
+    o.memory.user_data = &a;
+    CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL), MESHFIX_OK);
     CHECK_EQ(a.allocations, 1);
     CHECK_EQ(a.frees, 1);
     CHECK(a.peak <= meshfix_scratch_size(g.index_count, g.vertex_count, &o));
@@ -569,13 +579,13 @@ static void test_allocators(void)
     memset(&a, 0, sizeof(a));
     a.fail_at = 1;
     memcpy(out, before, g.index_count * sizeof(unsigned int));
-    r.triangles = 12345;
-    CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
+    r.mesh.triangles = 12345;
+    CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL),
              MESHFIX_ERROR_OUT_OF_MEMORY);
     CHECK_EQ(a.allocations, a.frees);
-    CHECK_EQ(r.triangles, 12345);
+    CHECK_EQ(r.mesh.triangles, 12345);
     CHECK(memcmp(out, before, g.index_count * sizeof(unsigned int)) == 0);
-    CHECK_EQ(meshfix_inspect_ex(g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
+    CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL),
              MESHFIX_ERROR_OUT_OF_MEMORY);
     /* caller scratch: zero allocations under every policy; one byte short
        of what the mesh needs: refused */
@@ -592,21 +602,21 @@ static void test_allocators(void)
             need = meshfix_scratch_size(two.index_count, two.vertex_count, &o);
             scratch = malloc(need);
             memset(&a, 0, sizeof(a));
-            o.scratch = scratch;
-            o.scratch_size = need;
+            o.memory.scratch = scratch;
+            o.memory.scratch_size = need;
             CHECK_EQ(meshfix_orient(two.indices, two.indices, two.index_count, two.positions, two.vertex_count, 12, &o,
-                                    &r), MESHFIX_OK);
+                                    &r, NULL), MESHFIX_OK);
             CHECK_EQ(a.allocations, 0);
-            CHECK_EQ(r.edges_inconsistent, 0);
+            CHECK_EQ(r.mesh.edges_inconsistent, 0);
             free(scratch);
         }
-        o.scratch = NULL;
+        o.memory.scratch = NULL;
         o.policy = MESHFIX_POLICY_MAJORITY; /* the topology alone: its exact need */
         need = meshfix_scratch_size(g.index_count, g.vertex_count, &o);
         scratch = malloc(need);
-        o.scratch = (char *)scratch + 1; /* misaligned on purpose */
-        o.scratch_size = need - 1;
-        CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
+        o.memory.scratch = (char *)scratch + 1; /* misaligned on purpose */
+        o.memory.scratch_size = need - 1;
+        CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL),
                  MESHFIX_ERROR_SCRATCH_TOO_SMALL);
         free(scratch);
         mio_free(&two);
@@ -659,18 +669,18 @@ static void test_property_random_flips(void)
         size_t shells, flipped;
         double fraction;
         random_mesh(&g, &seed, &shells);
-        CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, &clean_report), MESHFIX_OK);
-        CHECK_EQ(clean_report.components, shells);
-        CHECK_EQ(clean_report.edges_inconsistent, 0);
+        CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &clean_report, NULL), MESHFIX_OK);
+        CHECK_EQ(clean_report.mesh.components, shells);
+        CHECK_EQ(clean_report.mesh.edges_inconsistent, 0);
         clean = copy_indices(g.indices, g.index_count);
         fraction = gen_uniform(&seed);
         flipped = gen_flip_random(&g, fraction, gen_random(&seed), NULL);
         out = orient_checked(g.indices, g.index_count, g.positions, g.vertex_count, 12,
                              plain_policies[round % 4], &r);
-        CHECK_EQ(r.edges_inconsistent, 0);
-        CHECK_EQ(r.components, shells);
-        CHECK_EQ(r.edges, clean_report.edges);
-        CHECK_EQ(r.euler_characteristic, clean_report.euler_characteristic);
+        CHECK_EQ(r.mesh.edges_inconsistent, 0);
+        CHECK_EQ(r.mesh.components, shells);
+        CHECK_EQ(r.mesh.edges, clean_report.mesh.edges);
+        CHECK_EQ(r.mesh.euler_characteristic, clean_report.mesh.euler_characteristic);
         if (plain_policies[round % 4] == MESHFIX_POLICY_MAJORITY && fraction > 0.6 && shells == 1) {
             CHECK(is_reversal(out, clean, g.index_count));
         } else if (plain_policies[round % 4] != MESHFIX_POLICY_SEED &&
@@ -678,7 +688,7 @@ static void test_property_random_flips(void)
             /* every closed shell faces out again: exactly the clean mesh */
             CHECK(memcmp(out, clean, g.index_count * sizeof(unsigned int)) == 0);
             CHECK_EQ(r.triangles_flipped, flipped);
-            CHECK(fabs(r.signed_volume - clean_report.signed_volume) < 1e-6 * clean_report.signed_volume);
+            CHECK(fabs(r.mesh.signed_volume - clean_report.mesh.signed_volume) < 1e-6 * clean_report.mesh.signed_volume);
         }
         free(clean);
         free(out);
@@ -707,9 +717,9 @@ static void test_property_random_soups(void)
         again = orient_checked(idx, 3 * triangles, p, vertices, 12, plain_policies[round % 4], &r2);
         CHECK(memcmp(out, again, 3 * triangles * sizeof(unsigned int)) == 0);
         CHECK(memcmp(&r, &r2, sizeof(r)) == 0);
-        CHECK(r.edges_inconsistent <= r.edges_inconsistent_input || r.components_non_orientable > 0);
-        CHECK_EQ(r.edges, r.edges_boundary + r.edges_manifold + r.edges_non_manifold);
-        CHECK(r.patches >= r.components);
+        CHECK(r.mesh.edges_inconsistent <= r.edges_inconsistent_before || r.mesh.components_non_orientable > 0);
+        CHECK_EQ(r.mesh.edges, r.mesh.edges_boundary + r.mesh.edges_manifold + r.mesh.edges_non_manifold);
+        CHECK(r.mesh.patches >= r.mesh.components);
         free(out);
         free(again);
         free(idx);
@@ -758,11 +768,11 @@ static void check_scrambled_patches(const char *name, const mio_mesh *g, const u
     s.indices = copy_indices(reference, g->index_count);
     gen_flip_random(&s, 0.35, seed, scrambled);
     out = orient_checked(s.indices, s.index_count, s.positions, s.vertex_count, 12, (meshfix_policy)policy, &r);
-    CHECK_EQ(r.edges_inconsistent, r.edges_non_manifold);
-    if (policy == MESHFIX_POLICY_OUTWARD && r.patches_inside_out != 0)
-        printf("    %s: %lu patches inside-out\n", name, (unsigned long)r.patches_inside_out);
+    CHECK_EQ(r.mesh.edges_inconsistent, r.mesh.edges_non_manifold);
+    if (policy == MESHFIX_POLICY_OUTWARD && r.mesh.patches_inside_out != 0)
+        printf("    %s: %lu patches inside-out\n", name, (unsigned long)r.mesh.patches_inside_out);
     if (policy == MESHFIX_POLICY_OUTWARD)
-        CHECK_EQ(r.patches_inside_out, 0);
+        CHECK_EQ(r.mesh.patches_inside_out, 0);
     for (t = 0; t < g->index_count / 3; ++t) {
         size_t patch = patch_ids[t] == 0xFFFFFFFFu ? patches : patch_ids[t];
         double a = triangle_area(g, reference, t);
@@ -805,6 +815,7 @@ static void test_real_models(void)
         mio_mesh g;
         meshfix_report input, fixed;
         meshfix_options o;
+        meshfix_outputs outputs;
         unsigned int *reference, *patch_ids;
         int policy;
         snprintf(path, sizeof(path), "%s/%s", models_dir(), files[f]);
@@ -814,23 +825,24 @@ static void test_real_models(void)
             continue;
         }
         loaded++;
-        CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, &input), MESHFIX_OK);
+        CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &input, NULL), MESHFIX_OK);
         patch_ids = (unsigned int *)malloc(g.index_count / 3 * sizeof(unsigned int) + 1);
         for (policy = MESHFIX_POLICY_MAJORITY; policy <= MESHFIX_POLICY_OUTWARD; ++policy) {
             reference = orient_checked(g.indices, g.index_count, g.positions, g.vertex_count, 12,
                                        (meshfix_policy)policy, &fixed);
-            CHECK_EQ(fixed.edges_inconsistent, fixed.edges_non_manifold);
-            CHECK_EQ(fixed.components_non_orientable, 0);
-            CHECK_EQ(fixed.patches, input.patches);
+            CHECK_EQ(fixed.mesh.edges_inconsistent, fixed.mesh.edges_non_manifold);
+            CHECK_EQ(fixed.mesh.components_non_orientable, 0);
+            CHECK_EQ(fixed.mesh.patches, input.mesh.patches);
             if (policy == MESHFIX_POLICY_OUTWARD)
-                CHECK_EQ(fixed.patches_inside_out, 0);
-            if (input.edges_inconsistent == 0 && policy == MESHFIX_POLICY_MAJORITY)
+                CHECK_EQ(fixed.mesh.patches_inside_out, 0);
+            if (input.mesh.edges_inconsistent == 0 && policy == MESHFIX_POLICY_MAJORITY)
                 CHECK_EQ(fixed.triangles_flipped, 0); /* consistent already: unchanged */
             memset(&o, 0, sizeof(o));
-            o.patch_ids = patch_ids;
-            CHECK_EQ(meshfix_inspect_ex(reference, g.index_count, g.positions, g.vertex_count, 12, &o, &fixed),
+            memset(&outputs, 0, sizeof(outputs));
+            outputs.patch_ids = patch_ids;
+            CHECK_EQ(meshfix_inspect(reference, g.index_count, g.positions, g.vertex_count, 12, &o, &fixed, &outputs),
                      MESHFIX_OK);
-            check_scrambled_patches(files[f], &g, reference, patch_ids, fixed.patches, policy, 1000 + f);
+            check_scrambled_patches(files[f], &g, reference, patch_ids, fixed.mesh.patches, policy, 1000 + f);
             free(reference);
         }
         free(patch_ids);
@@ -881,7 +893,7 @@ static void test_hostile_files(void)
             lower[3] = 0;
             if (mio_parse(data, (size_t)cut, lower, &g, error, sizeof(error))) {
                 meshfix_report r;
-                CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r),
+                CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r, NULL),
                          MESHFIX_OK);
                 mio_free(&g);
             }

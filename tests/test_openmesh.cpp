@@ -125,21 +125,25 @@ static bool check_mesh(const char *name, const mio_mesh &g)
     s.indices = scrambled.data();
     gen_flip_random(&s, 0.3, 77, NULL);
 
+    // OpenMesh joins faces by vertex index: meshfix is asked to do the same
+    meshfix_options by_index = {};
+    by_index.topology = MESHFIX_TOPOLOGY_INDICES;
     meshfix_report input, r;
-    EXPECT_EQ(name, meshfix_inspect(s.indices, s.index_count, s.positions, s.vertex_count, 12, &input), MESHFIX_OK);
+    EXPECT_EQ(name, meshfix_inspect(s.indices, s.index_count, s.positions, s.vertex_count, 12, &by_index, &input, NULL),
+              MESHFIX_OK);
     OmCounts bad = load_into_openmesh(g, s.indices);
-    if (input.edges_inconsistent == 0 || (bad.refused == 0 && !bad.aborted)) {
+    if (input.mesh.edges_inconsistent == 0 || (bad.refused == 0 && !bad.aborted)) {
         std::printf("    %s: scrambled input should be inconsistent and refused by OpenMesh (%lu edges, %lu faces)\n",
-                    name, (unsigned long)input.edges_inconsistent, (unsigned long)bad.refused);
+                    name, (unsigned long)input.mesh.edges_inconsistent, (unsigned long)bad.refused);
         failures++;
     }
 
     std::vector<unsigned int> fixed(g.index_count);
-    EXPECT_EQ(name, meshfix_orient(fixed.data(), s.indices, s.index_count, s.positions, s.vertex_count, 12, NULL, &r),
+    EXPECT_EQ(name, meshfix_orient(fixed.data(), s.indices, s.index_count, s.positions, s.vertex_count, 12, &by_index, &r, NULL),
               MESHFIX_OK);
-    EXPECT_EQ(name, r.edges_inconsistent, 0);
+    EXPECT_EQ(name, r.mesh.edges_inconsistent, 0);
     OmCounts good = load_into_openmesh(g, fixed.data());
-    bool manifold = r.vertices_non_manifold == 0 && r.edges_non_manifold == 0;
+    bool manifold = r.mesh.vertices_non_manifold == 0 && r.mesh.edges_non_manifold == 0;
     if (manifold) {
         // a manifold mesh: OpenMesh must take every face
         EXPECT_EQ(name, good.aborted, false);
@@ -147,18 +151,18 @@ static bool check_mesh(const char *name, const mio_mesh &g)
     }
     if (manifold || (good.refused == 0 && !good.aborted)) {
         // whenever it took every face, it must count as we do
-        EXPECT_EQ(name, good.faces, r.triangles - r.triangles_degenerate);
-        EXPECT_EQ(name, good.edges, r.edges);
-        EXPECT_EQ(name, good.boundary, r.edges_boundary);
-        EXPECT_EQ(name, good.vertices_used, r.vertices_used);
-        EXPECT_EQ(name, good.components, r.components);
-    } else if (r.edges_inconsistent != 0) {
+        EXPECT_EQ(name, good.faces, r.mesh.triangles - r.mesh.triangles_degenerate);
+        EXPECT_EQ(name, good.edges, r.mesh.edges);
+        EXPECT_EQ(name, good.boundary, r.mesh.edges_boundary);
+        EXPECT_EQ(name, good.vertices_used, r.mesh.vertices_used);
+        EXPECT_EQ(name, good.components, r.mesh.components);
+    } else if (r.mesh.edges_inconsistent != 0) {
         std::printf("    %s: non-manifold and still inconsistent\n", name);
         failures++;
     }
     // OpenMesh refuses consistent faces only at complex (non-manifold)
     // vertices: every refusal must be explained by one meshfix reports.
-    if ((good.refused != 0 || good.aborted) && r.vertices_non_manifold == 0) {
+    if ((good.refused != 0 || good.aborted) && r.mesh.vertices_non_manifold == 0) {
         std::printf("    %s: OpenMesh refused repaired faces but meshfix reports no non-manifold vertex\n", name);
         failures++;
     }
@@ -172,7 +176,7 @@ static bool check_mesh(const char *name, const mio_mesh &g)
                 "boundary %lu, components %lu\n",
                 ok ? "ok  " : "FAIL", name, (unsigned long)(g.index_count / 3), refused,
                 good.aborted ? "OpenMesh aborted, " : "", (unsigned long)good.refused,
-                (unsigned long)r.vertices_non_manifold, (unsigned long)good.boundary, (unsigned long)good.components);
+                (unsigned long)r.mesh.vertices_non_manifold, (unsigned long)good.boundary, (unsigned long)good.components);
     return ok;
 }
 

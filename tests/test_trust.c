@@ -16,26 +16,33 @@
 #include "scenes.h"
 
 #include "check.h"
+#include "models.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* The default policy on a mesh; returns the repaired indices (free them). */
-static unsigned int *repair(const mio_mesh *g, const meshfix_options *options, meshfix_report *r)
+static unsigned int *repair_with_outputs(const mio_mesh *g, const meshfix_options *options, meshfix_report *r,
+                                         meshfix_outputs *outputs)
 {
     unsigned int *out = (unsigned int *)malloc(g->index_count * sizeof(unsigned int) + 4);
-    CHECK_EQ(meshfix_orient(out, g->indices, g->index_count, g->positions, g->vertex_count, 12, options, r),
+    CHECK_EQ(meshfix_orient(out, g->indices, g->index_count, g->positions, g->vertex_count, 12, options, r, outputs),
              MESHFIX_OK);
     return out;
+}
+
+static unsigned int *repair(const mio_mesh *g, const meshfix_options *options, meshfix_report *r)
+{
+    return repair_with_outputs(g, options, r, NULL);
 }
 
 /* Every patch is counted once by what decided it. */
 static void check_counts(const meshfix_report *r)
 {
-    CHECK_EQ(r->patches_by_volume + r->patches_by_parity + r->patches_by_visibility + r->patches_by_normals +
-                 r->patches_kept,
-             r->patches);
+    CHECK_EQ(r->evidence.patches_by_volume + r->evidence.patches_by_parity + r->evidence.patches_by_visibility + r->evidence.patches_by_normals +
+                 r->evidence.patches_kept,
+             r->mesh.patches);
 }
 
 /* Indices that differ from the input's. */
@@ -65,8 +72,8 @@ static void test_quad_and_terrain(void)
     out = repair(&quad, NULL, &r);
     CHECK_EQ(r.triangles_flipped, 0);
     CHECK_EQ(count_changed(&quad, out), 0);
-    CHECK_EQ(r.patches_kept, 1);
-    CHECK_EQ(r.rays_cast, 0); /* nothing could turn a consistent sheet over: no ray was needed */
+    CHECK_EQ(r.evidence.patches_kept, 1);
+    CHECK_EQ(r.evidence.rays_cast, 0); /* nothing could turn a consistent sheet over: no ray was needed */
     free(out);
     /* a 20 x 20 height field facing up, hills and all */
     CHECK(gen_grid(&terrain, 20, 20));
@@ -82,15 +89,6 @@ static void test_quad_and_terrain(void)
 
 /* ---- real files ---- */
 
-static int load(const char *path, mio_mesh *g)
-{
-    char error[256];
-    if (mio_load(path, g, error, sizeof(error)))
-        return 1;
-    printf("    cannot load %s: %s (bash .ci/run installs occt-misc and assimp-testmodels)\n", path, error);
-    failures++;
-    return 0;
-}
 
 /* motor.stl: 13 bodies of a CAD assembly touching each other, every
    stored normal right; the default policy once turned 5,163 of its
@@ -100,11 +98,11 @@ static void test_motor(void)
     mio_mesh g;
     meshfix_report r;
     unsigned int *out;
-    if (!load("/usr/share/opencascade/data/stl/motor.stl", &g))
+    if (!load_model("/usr/share/opencascade/data/stl/motor.stl", &g))
         return;
     out = repair(&g, NULL, &r);
-    printf("    motor.stl: %lu triangles, %lu patches, %lu flipped\n", (unsigned long)r.triangles,
-           (unsigned long)r.patches, (unsigned long)r.triangles_flipped);
+    printf("    motor.stl: %lu triangles, %lu patches, %lu flipped\n", (unsigned long)r.mesh.triangles,
+           (unsigned long)r.mesh.patches, (unsigned long)r.triangles_flipped);
     CHECK_EQ(r.triangles_flipped, 0);
     check_counts(&r);
     free(out);
@@ -128,16 +126,16 @@ static void test_real_models_unchanged(void)
         mio_mesh g;
         meshfix_report before, r;
         unsigned int *out, *reversed;
-        if (!load(files[f], &g))
+        if (!load_model(files[f], &g))
             continue;
-        CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, &before), MESHFIX_OK);
+        CHECK_EQ(meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &before, NULL), MESHFIX_OK);
         out = repair(&g, NULL, &r);
-        if (before.edges_inconsistent == before.edges_non_manifold && before.patches_inside_out == 0) {
+        if (before.mesh.edges_inconsistent == before.mesh.edges_non_manifold && before.mesh.patches_inside_out == 0) {
             if (r.triangles_flipped != 0)
                 printf("    %s: %lu flipped\n", files[f], (unsigned long)r.triangles_flipped);
             CHECK_EQ(r.triangles_flipped, 0);
         }
-        if (before.edges_boundary == 0 && before.edges_inconsistent == 0 && before.patches_inside_out == 0) {
+        if (before.mesh.edges_boundary == 0 && before.mesh.edges_inconsistent == 0 && before.mesh.patches_inside_out == 0) {
             /* closed: inside out, then repaired, it is the file again */
             reversed = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
             memcpy(reversed, g.indices, g.index_count * sizeof(unsigned int));
@@ -145,7 +143,7 @@ static void test_real_models_unchanged(void)
                 reversed[3 * t + 1] = g.indices[3 * t + 2];
                 reversed[3 * t + 2] = g.indices[3 * t + 1];
             }
-            CHECK_EQ(meshfix_orient(reversed, reversed, g.index_count, g.positions, g.vertex_count, 12, NULL, &r),
+            CHECK_EQ(meshfix_orient(reversed, reversed, g.index_count, g.positions, g.vertex_count, 12, NULL, &r, NULL),
                      MESHFIX_OK);
             CHECK(memcmp(reversed, g.indices, g.index_count * sizeof(unsigned int)) == 0);
             free(reversed);
@@ -311,19 +309,19 @@ static void test_authored_normals(void)
     out = repair(&g, NULL, &r);
     CHECK_EQ(r.triangles_flipped, n); /* geometry alone: outward */
     free(out);
-    o.triangle_normals = normals;
+    o.evidence.triangle_normals = normals;
     out = repair(&g, &o, &r);
     CHECK_EQ(r.triangles_flipped, 0); /* the normals agree with the winding: kept */
     free(out);
     gen_reverse_random(&g, NULL, 0.5, 3);
     out = repair(&g, &o, &r);
     CHECK(memcmp(out, inward, g.index_count * sizeof(unsigned int)) == 0);
-    CHECK(r.patches_by_normals + r.patches_by_volume == r.patches);
+    CHECK(r.evidence.patches_by_normals + r.evidence.patches_by_volume == r.mesh.patches);
     free(out);
     o.policy = MESHFIX_POLICY_NORMALS;
     out = repair(&g, &o, &r);
     CHECK(memcmp(out, inward, g.index_count * sizeof(unsigned int)) == 0);
-    CHECK_EQ(r.patches_by_normals, 1);
+    CHECK_EQ(r.evidence.patches_by_normals, 1);
     free(out);
     free(inward);
     free(normals);
@@ -339,6 +337,7 @@ static void test_min_confidence(void)
     scene s;
     scene_trial t;
     meshfix_options o;
+    meshfix_outputs outputs;
     meshfix_report r, strict;
     float confidence[4096];
     unsigned int *ids, *out;
@@ -348,27 +347,28 @@ static void test_min_confidence(void)
     n = t.mesh.index_count / 3;
     ids = (unsigned int *)malloc(n * sizeof(unsigned int));
     memset(&o, 0, sizeof(o));
-    o.patch_confidence = confidence;
-    o.patch_confidence_capacity = 4096;
-    o.patch_ids = ids;
-    out = repair(&t.mesh, &o, &r);
+    memset(&outputs, 0, sizeof(outputs));
+    outputs.patch_confidence = confidence;
+    outputs.patch_confidence_capacity = 4096;
+    outputs.patch_ids = ids;
+    out = repair_with_outputs(&t.mesh, &o, &r, &outputs);
     free(out);
-    CHECK(r.patches <= 4096);
-    o.min_confidence = 0.9f;
-    out = repair(&t.mesh, &o, &strict);
+    CHECK(r.mesh.patches <= 4096);
+    o.evidence.min_confidence = 0.9f;
+    out = repair_with_outputs(&t.mesh, &o, &strict, &outputs);
     CHECK(strict.triangles_flipped <= r.triangles_flipped);
     CHECK(strict.patches_doubtful >= r.patches_doubtful);
     /* each patch below 0.9 now faces its own majority side as given */
     {
-        double *kept = (double *)calloc(r.patches, sizeof(double)), *turned = (double *)calloc(r.patches, sizeof(double));
+        double *kept = (double *)calloc(r.mesh.patches, sizeof(double)), *turned = (double *)calloc(r.mesh.patches, sizeof(double));
         size_t p, wrong = 0;
         for (i = 0; i < n; ++i) {
             double a = scene_triangle_area(&t.mesh, i);
             int flipped = out[3 * i + 1] != t.mesh.indices[3 * i + 1];
-            if (ids[i] < r.patches)
+            if (ids[i] < r.mesh.patches)
                 *(flipped ? &turned[ids[i]] : &kept[ids[i]]) += a;
         }
-        for (p = 0; p < r.patches; ++p)
+        for (p = 0; p < r.mesh.patches; ++p)
             wrong += confidence[p] < 0.9f && turned[p] > kept[p];
         CHECK_EQ(wrong, 0);
         free(kept);

@@ -224,9 +224,9 @@ static double repair_cut(const cut *c, meshfix_policy policy, unsigned int flags
     double share;
     memset(&o, 0, sizeof(o));
     o.policy = policy;
-    o.visibility_flags = flags;
+    o.visibility.flags = flags;
     CHECK_EQ(meshfix_orient(out, c->mesh.indices, c->mesh.index_count, c->mesh.positions, c->mesh.vertex_count, 12,
-                            &o, r),
+                            &o, r, NULL),
              MESHFIX_OK);
     share = outward_share(c, out);
     free(out);
@@ -244,7 +244,7 @@ static int load_closed_reference(const char *file, mio_mesh *g)
         printf("    cannot load %s: %s (install Debian's assimp-testmodels)\n", path, error);
         return 0;
     }
-    return meshfix_orient(g->indices, g->indices, g->index_count, g->positions, g->vertex_count, 12, NULL, &r) ==
+    return meshfix_orient(g->indices, g->indices, g->index_count, g->positions, g->vertex_count, 12, NULL, &r, NULL) ==
            MESHFIX_OK;
 }
 
@@ -254,15 +254,15 @@ static void check_cut(const char *name, const mio_mesh *g, size_t clusters)
     meshfix_report r;
     double share;
     cut_model(g, clusters, 0.002f, 0.2, 77, &c);
-    CHECK_EQ(meshfix_inspect(c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &r),
+    CHECK_EQ(meshfix_inspect(c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r, NULL),
              MESHFIX_OK);
     share = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, 0, &r);
     printf("    %s in %lu patches (%lu triangles): %.4f%% of the area outward; %lu rays, %lu pairs, %lu merges\n",
-           name, (unsigned long)r.patches, (unsigned long)r.triangles, 100 * share, (unsigned long)r.rays_cast,
-           (unsigned long)r.patch_pairs, (unsigned long)r.patches_merged);
-    CHECK(r.patches >= clusters / 2);
+           name, (unsigned long)r.mesh.patches, (unsigned long)r.mesh.triangles, 100 * share, (unsigned long)r.evidence.rays_cast,
+           (unsigned long)r.evidence.patch_pairs, (unsigned long)r.evidence.patches_merged);
+    CHECK(r.mesh.patches >= clusters / 2);
     CHECK(share >= 0.999);
-    CHECK_EQ(r.edges_inconsistent, 0);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
     share = repair_cut(&c, MESHFIX_POLICY_AUTO, 0, &r);
     CHECK(share >= 0.999);
     free_cut(&c);
@@ -329,7 +329,7 @@ static void test_open_sheets(void)
     make_windshield(&g);
     cut_model(&g, 30, 0.002f, 0.2, 5, &c);
     share = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, 0, &r);
-    printf("    windshield in %lu patches: %.4f%% wound like the reference\n", (unsigned long)r.patches, 100 * share);
+    printf("    windshield in %lu patches: %.4f%% wound like the reference\n", (unsigned long)r.mesh.patches, 100 * share);
     CHECK(consistent(share));
     CHECK(repair_cut(&c, MESHFIX_POLICY_AUTO, 0, &r) == share);
     free_cut(&c);
@@ -341,7 +341,7 @@ static void test_open_sheets(void)
     share = repair_cut(&c, MESHFIX_POLICY_UP, 0, &r);
     CHECK(share >= 0.999);
     share = repair_cut(&c, MESHFIX_POLICY_VISIBILITY, 0, &r);
-    printf("    terrain in %lu patches: UP all up; VISIBILITY %.4f%% like the reference\n", (unsigned long)r.patches,
+    printf("    terrain in %lu patches: UP all up; VISIBILITY %.4f%% like the reference\n", (unsigned long)r.mesh.patches,
            100 * share);
     CHECK(consistent(share));
     free_cut(&c);
@@ -423,9 +423,9 @@ static void test_nested_shells(void)
     for (policy = MESHFIX_POLICY_AUTO; policy <= MESHFIX_POLICY_OUTWARD; policy += MESHFIX_POLICY_OUTWARD) {
         memset(&o, 0, sizeof(o));
         o.policy = (meshfix_policy)policy;
-        CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r), MESHFIX_OK);
+        CHECK_EQ(meshfix_orient(out, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL), MESHFIX_OK);
         CHECK(memcmp(out, reference, g.index_count * sizeof(unsigned int)) == 0);
-        CHECK_EQ(r.shells_inward, 1);
+        CHECK_EQ(r.evidence.shells_inward, 1);
     }
     free(reference);
     free(out);
@@ -464,13 +464,13 @@ static void test_cavity_in_open_shell(void)
     }
     out = (unsigned int *)malloc(c.mesh.index_count * sizeof(unsigned int));
     memset(&o, 0, sizeof(o));
-    CHECK_EQ(meshfix_orient(out, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r),
+    CHECK_EQ(meshfix_orient(out, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r, NULL),
              MESHFIX_OK);
     share = outward_share(&c, out);
     printf("    outer shell in %lu open patches with gaps, cavity, island: %.4f%% as the reference\n",
-           (unsigned long)(r.patches - 2), 100 * share);
+           (unsigned long)(r.mesh.patches - 2), 100 * share);
     CHECK(share >= 0.999);
-    CHECK_EQ(r.shells_inward, 1);
+    CHECK_EQ(r.evidence.shells_inward, 1);
     (void)outer_triangles;
     free(out);
     free_cut(&c);
@@ -494,9 +494,9 @@ static void test_intersecting_shells(void)
     reference = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
     memcpy(reference, g.indices, g.index_count * sizeof(unsigned int));
     gen_flip_random(&g, 0.6, 10, NULL);
-    CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r), MESHFIX_OK);
+    CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
     CHECK(memcmp(g.indices, reference, g.index_count * sizeof(unsigned int)) == 0);
-    CHECK_EQ(r.shells_inward, 0);
+    CHECK_EQ(r.evidence.shells_inward, 0);
     free(reference);
     mio_free(&g);
     mio_free(&a);
@@ -514,10 +514,10 @@ static void test_mobius(void)
     for (policy = 0; policy < 2; ++policy) {
         memset(&o, 0, sizeof(o));
         o.policy = policy ? MESHFIX_POLICY_VISIBILITY : MESHFIX_POLICY_AUTO;
-        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r),
+        CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL),
                  MESHFIX_OK);
-        CHECK_EQ(r.components_non_orientable, 1);
-        CHECK(r.edges_inconsistent >= 1 && r.edges_inconsistent <= 2);
+        CHECK_EQ(r.mesh.components_non_orientable, 1);
+        CHECK(r.mesh.edges_inconsistent >= 1 && r.mesh.edges_inconsistent <= 2);
     }
     mio_free(&g);
 }
@@ -541,7 +541,7 @@ static void test_order_and_flip_independence(void)
     shuffled = (unsigned int *)malloc(3 * n * sizeof(unsigned int));
     back = (unsigned int *)malloc(3 * n * sizeof(unsigned int));
     perm = (unsigned int *)malloc(n * sizeof(unsigned int));
-    CHECK_EQ(meshfix_orient(out, c.mesh.indices, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r), MESHFIX_OK);
+    CHECK_EQ(meshfix_orient(out, c.mesh.indices, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
     for (t = 0; t < n; ++t)
         perm[t] = (unsigned int)t;
     for (t = n - 1; t > 0; --t) {
@@ -552,7 +552,7 @@ static void test_order_and_flip_independence(void)
     }
     for (t = 0; t < n; ++t)
         memcpy(shuffled + 3 * t, c.mesh.indices + 3 * perm[t], 3 * sizeof(unsigned int));
-    CHECK_EQ(meshfix_orient(shuffled, shuffled, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r), MESHFIX_OK);
+    CHECK_EQ(meshfix_orient(shuffled, shuffled, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
     for (t = 0; t < n; ++t)
         memcpy(back + 3 * perm[t], shuffled + 3 * t, 3 * sizeof(unsigned int));
     CHECK(memcmp(back, out, 3 * n * sizeof(unsigned int)) == 0);
@@ -563,7 +563,7 @@ static void test_order_and_flip_independence(void)
         for (t = 0; t < n; ++t)
             if (gen_uniform(&s2) < 0.3 * f)
                 flip(shuffled, t);
-        CHECK_EQ(meshfix_orient(shuffled, shuffled, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r),
+        CHECK_EQ(meshfix_orient(shuffled, shuffled, 3 * n, c.mesh.positions, c.mesh.vertex_count, 12, NULL, &r, NULL),
                  MESHFIX_OK);
         CHECK(memcmp(shuffled, out, 3 * n * sizeof(unsigned int)) == 0);
     }
@@ -592,6 +592,7 @@ static void test_parallel_for_identical(void)
     mio_mesh g;
     cut c;
     meshfix_options o;
+    meshfix_outputs outputs;
     meshfix_report r1, r2;
     float conf1[512], conf2[512];
     unsigned int *a, *b;
@@ -601,24 +602,25 @@ static void test_parallel_for_identical(void)
     a = (unsigned int *)malloc(c.mesh.index_count * sizeof(unsigned int));
     b = (unsigned int *)malloc(c.mesh.index_count * sizeof(unsigned int));
     memset(&o, 0, sizeof(o));
+    memset(&outputs, 0, sizeof(outputs));
     o.policy = MESHFIX_POLICY_VISIBILITY;
-    o.patch_confidence = conf1;
-    o.patch_confidence_capacity = 512;
-    CHECK_EQ(meshfix_orient(a, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r1),
+    outputs.patch_confidence = conf1;
+    outputs.patch_confidence_capacity = 512;
+    CHECK_EQ(meshfix_orient(a, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r1, &outputs),
              MESHFIX_OK);
     o.parallel_for = backwards_parallel_for;
     o.parallel_user = &calls;
-    o.patch_confidence = conf2;
-    CHECK_EQ(meshfix_orient(b, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r2),
+    outputs.patch_confidence = conf2;
+    CHECK_EQ(meshfix_orient(b, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r2, &outputs),
              MESHFIX_OK);
     CHECK(calls == 1);
     CHECK(memcmp(a, b, c.mesh.index_count * sizeof(unsigned int)) == 0);
     CHECK(memcmp(&r1, &r2, sizeof(r1)) == 0);
-    CHECK(memcmp(conf1, conf2, r1.patches * sizeof(float)) == 0);
-    CHECK(r1.patches < 512);
+    CHECK(memcmp(conf1, conf2, r1.mesh.patches * sizeof(float)) == 0);
+    CHECK(r1.mesh.patches < 512);
     {
         size_t p;
-        for (p = 0; p < r1.patches; ++p)
+        for (p = 0; p < r1.mesh.patches; ++p)
             CHECK(conf1[p] >= 0.0f && conf1[p] <= 1.0f);
     }
     free(a);
@@ -649,10 +651,10 @@ static void test_weld(void)
     CHECK_EQ(unique, g.vertex_count);
     for (t = 0; t < corners; ++t)
         indices[t] = remap[t];
-    CHECK_EQ(meshfix_inspect(indices, corners, soup, corners, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.components, 1);
-    CHECK_EQ(r.edges_boundary, 0);
-    CHECK_EQ(r.euler_characteristic, 2);
+    CHECK_EQ(meshfix_inspect(indices, corners, soup, corners, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.components, 1);
+    CHECK_EQ(r.mesh.edges_boundary, 0);
+    CHECK_EQ(r.mesh.euler_characteristic, 2);
     /* jittered corners: welded by a tolerance, not without one */
     for (t = 0; t < 3 * corners; ++t)
         soup[t] += (float)(gen_uniform(&seed) - 0.5) * 2e-5f;

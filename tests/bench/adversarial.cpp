@@ -154,7 +154,7 @@ static Timing time_orient(const Soup &s, int runs, std::vector<unsigned int> *ou
     out->resize(s.indices.size());
     return time_enough(runs, [&] {
         if (meshfix_orient(out->data(), s.indices.data(), s.indices.size(), s.positions.data(), s.vertices(), 12,
-                           nullptr, nullptr) != MESHFIX_OK)
+                           nullptr, nullptr, NULL) != MESHFIX_OK)
             *failed = true;
     });
 }
@@ -162,7 +162,7 @@ static Timing time_orient(const Soup &s, int runs, std::vector<unsigned int> *ou
 static Timing time_inspect(const Soup &s, int runs, meshfix_report *report, bool *failed)
 {
     return time_enough(runs, [&] {
-        if (meshfix_inspect(s.indices.data(), s.indices.size(), s.positions.data(), s.vertices(), 12, report) !=
+        if (meshfix_inspect(s.indices.data(), s.indices.size(), s.positions.data(), s.vertices(), 12, NULL, report, NULL) !=
             MESHFIX_OK)
             *failed = true;
     });
@@ -275,7 +275,7 @@ int part_adversarial(const Settings &s, std::vector<std::string> *summary)
             (g ? orient.size_large : orient.size_small) = double(soup.triangles());
             char note[128];
             std::snprintf(note, sizeof(note), "%sk=%d: %zu duplicates, %zu non-manifold edges", g ? "; " : "",
-                          g ? 64 : 40, report.triangles_duplicate, report.edges_non_manifold);
+                          g ? 64 : 40, report.mesh.triangles_duplicate, report.mesh.edges_non_manifold);
             inspect.note += note;
         }
         print_row(twice ? "hypergraph k=40/64, each triangle twice" : "hypergraph k=40/64 (all triangles of k points)",

@@ -18,7 +18,7 @@
 //               counted, its error stream is silenced).
 // Then, once each: the share of triangles facing their intended way after
 // the default and the visibility repair, and the allocations each makes
-// when handed caller scratch (options.scratch of meshfix_scratch_size()
+// when handed caller scratch (options.memory.scratch of meshfix_scratch_size()
 // bytes for that policy, counted through options.allocator).
 #define MESHFIX_STATIC
 #define MESHFIX_IMPLEMENTATION
@@ -104,7 +104,7 @@ static void run_variant(const mio_mesh &cut, const std::vector<unsigned int> &pa
     const mio_mesh &g = m.m;
     std::vector<unsigned int> in(g.indices, g.indices + g.index_count), out(g.index_count);
     auto orient = [&](const float *positions, const meshfix_options *o) {
-        if (meshfix_orient(out.data(), g.indices, g.index_count, positions, g.vertex_count, 12, o, nullptr) != MESHFIX_OK)
+        if (meshfix_orient(out.data(), g.indices, g.index_count, positions, g.vertex_count, 12, o, nullptr, NULL) != MESHFIX_OK)
             row->failed = true;
     };
     meshfix_options vis;
@@ -134,11 +134,11 @@ static void run_variant(const mio_mesh &cut, const std::vector<unsigned int> &pa
         o.policy = policy;
         size_t bytes = meshfix_scratch_size(g.index_count, g.vertex_count, &o);
         std::vector<unsigned char> scratch(bytes + 1);
-        o.scratch = scratch.data();
-        o.scratch_size = bytes;
-        o.allocator.alloc_fn = counting_alloc;
-        o.allocator.free_fn = counting_free;
-        o.allocator.user_data = &counter;
+        o.memory.scratch = scratch.data();
+        o.memory.scratch_size = bytes;
+        o.memory.alloc_func = counting_alloc;
+        o.memory.free_func = counting_free;
+        o.memory.user_data = &counter;
         orient(positions, &o);
         *calls = counter.calls;
         if (peak)
@@ -155,9 +155,9 @@ static void run_variant(const mio_mesh &cut, const std::vector<unsigned int> &pa
         CountingAllocator counter;
         meshfix_options o;
         std::memset(&o, 0, sizeof(o));
-        o.allocator.alloc_fn = counting_alloc;
-        o.allocator.free_fn = counting_free;
-        o.allocator.user_data = &counter;
+        o.memory.alloc_func = counting_alloc;
+        o.memory.free_func = counting_free;
+        o.memory.user_data = &counter;
         orient(g.positions, &o);
         row->peak_free_default = counter.peak;
     }

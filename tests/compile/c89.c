@@ -6,5 +6,5 @@ int main(void)
 {
     static const unsigned int indices[] = {0, 1, 2};
     meshfix_report report;
-    return meshfix_inspect(indices, 3, 0, 3, 0, &report) != MESHFIX_OK || report.edges_boundary != 3;
+    return meshfix_inspect(indices, 3, 0, 3, 0, NULL, &report, NULL) != MESHFIX_OK || report.mesh.edges_boundary != 3;
 }

@@ -4,5 +4,5 @@
 int main()
 {
     unsigned int indices[] = {0, 1, 2};
-    return meshfix_check(indices, 3, 0, 3, 0, MESHFIX_REQUIRE_CONSISTENT) != 1;
+    return meshfix_check(indices, 3, 0, 3, 0, MESHFIX_REQUIRE_CONSISTENT, NULL, NULL) != 1;
 }

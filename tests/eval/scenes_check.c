@@ -69,13 +69,13 @@ static void check_solid(const char *name, const mio_mesh *m, long euler, double 
 {
     meshfix_report r;
     double v = signed_volume(m);
-    CHECK_EQ(meshfix_inspect(m->indices, m->index_count, m->positions, m->vertex_count, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_boundary, 0);
-    CHECK_EQ(r.edges_non_manifold, 0);
-    CHECK_EQ(r.vertices_non_manifold, 0);
-    CHECK_EQ(r.edges_inconsistent, 0);
-    CHECK_EQ(r.triangles_degenerate + r.triangles_zero_area, 0);
-    CHECK_EQ(r.euler_characteristic, euler);
+    CHECK_EQ(meshfix_inspect(m->indices, m->index_count, m->positions, m->vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_boundary, 0);
+    CHECK_EQ(r.mesh.edges_non_manifold, 0);
+    CHECK_EQ(r.mesh.vertices_non_manifold, 0);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
+    CHECK_EQ(r.mesh.triangles_degenerate + r.mesh.triangles_zero_area, 0);
+    CHECK_EQ(r.mesh.euler_characteristic, euler);
     if (!near(v, volume, relative)) {
         printf("    %s: volume %g, expected %g\n", name, v, volume);
         failures++;
@@ -167,9 +167,9 @@ static void test_tubes_and_sheets(void)
     mio_free(&m);
     CHECK(gen_pipe(&m, 40, 6, 0.3f, 1));
     CHECK_EQ(count_against(&m, away_from_z_axis), 0);
-    CHECK_EQ(meshfix_inspect(m.indices, m.index_count, m.positions, m.vertex_count, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_boundary, 80);
-    CHECK_EQ(r.edges_inconsistent, 0);
+    CHECK_EQ(meshfix_inspect(m.indices, m.index_count, m.positions, m.vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_boundary, 80);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
     mio_free(&m);
     CHECK(gen_disc(&m, 64, 1, 1));
     CHECK_EQ(m.index_count / 3, 64);
@@ -177,9 +177,9 @@ static void test_tubes_and_sheets(void)
     mio_free(&m);
     CHECK(gen_disc(&m, 30, 7, 1));
     CHECK_EQ(count_against(&m, up), 0);
-    CHECK_EQ(meshfix_inspect(m.indices, m.index_count, m.positions, m.vertex_count, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_boundary, 30);
-    CHECK_EQ(r.edges_inconsistent, 0);
+    CHECK_EQ(meshfix_inspect(m.indices, m.index_count, m.positions, m.vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_boundary, 30);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
     mio_free(&m);
     CHECK(gen_plane(&m, 3, 2, 1.5f, 0.5f));
     CHECK_EQ(count_against(&m, up), 0);
@@ -189,9 +189,9 @@ static void test_tubes_and_sheets(void)
     mio_free(&m);
     CHECK(gen_channel(&m, 30, 10, 0.2f, 0.15f, 1));
     CHECK_EQ(count_against(&m, out_of_channel), 0);
-    CHECK_EQ(meshfix_inspect(m.indices, m.index_count, m.positions, m.vertex_count, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_inconsistent, 0);
-    CHECK_EQ(r.edges_boundary, 2 * 30 + 2 * 10);
+    CHECK_EQ(meshfix_inspect(m.indices, m.index_count, m.positions, m.vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
+    CHECK_EQ(r.mesh.edges_boundary, 2 * 30 + 2 * 10);
     mio_free(&m);
 }
 
@@ -235,9 +235,9 @@ static void test_cut(void)
             corner(&c, t, k, b);
             CHECK(fabs(a[0] - b[0]) + fabs(a[1] - b[1]) + fabs(a[2] - b[2]) < 0.03);
         }
-    CHECK_EQ(meshfix_inspect(c.indices, c.index_count, c.positions, c.vertex_count, 12, &r), MESHFIX_OK);
-    CHECK_EQ(r.edges_inconsistent, 0);
-    CHECK(r.patches >= patches);
+    CHECK_EQ(meshfix_inspect(c.indices, c.index_count, c.positions, c.vertex_count, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.edges_inconsistent, 0);
+    CHECK(r.mesh.patches >= patches);
     /* a vertex of the cut belongs to triangles of one patch only */
     {
         unsigned int *owner = (unsigned int *)malloc(c.vertex_count * sizeof(unsigned int));
@@ -305,8 +305,8 @@ static void part_facts(const scene *s, size_t part, int *closed, double *volume)
         if (s->part[t] == part)
             memcpy(sub.indices + 3 * n++, s->mesh.indices + 3 * t, 3 * sizeof(unsigned int));
     sub.index_count = 3 * n;
-    *closed = meshfix_inspect(sub.indices, sub.index_count, sub.positions, sub.vertex_count, 12, &r) == MESHFIX_OK &&
-              r.edges_boundary == 0 && r.edges_non_manifold == 0 && r.edges_inconsistent == 0;
+    *closed = meshfix_inspect(sub.indices, sub.index_count, sub.positions, sub.vertex_count, 12, NULL, &r, NULL) == MESHFIX_OK &&
+              r.mesh.edges_boundary == 0 && r.mesh.edges_non_manifold == 0 && r.mesh.edges_inconsistent == 0;
     *volume = signed_volume(&sub);
     free(sub.indices);
 }

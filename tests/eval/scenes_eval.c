@@ -224,7 +224,7 @@ static meshfix_result run(const scene_trial *t, const policy_choice *policy, siz
     options.policy = policy->policy;
     start = now_ms();
     result = meshfix_orient(out, t->mesh.indices, t->mesh.index_count, t->mesh.positions, t->mesh.vertex_count, 12,
-                            policy->named ? &options : NULL, NULL);
+                            policy->named ? &options : NULL, NULL, NULL);
     total->ms = now_ms() - start;
     if (result == MESHFIX_OK)
         score(t, out, total, parts);

@@ -551,9 +551,9 @@ static meshfix_result repair(const policy_choice *policy, const float *normals, 
     size_t t;
     memset(&options, 0, sizeof(options));
     options.policy = policy->policy;
-    options.triangle_normals = normals; /* the stored normals as evidence (--normals), or NULL */
+    options.evidence.triangle_normals = normals; /* the stored normals as evidence (--normals), or NULL */
     r = meshfix_orient(repaired, indices, 3 * triangles, positions, vertex_count, 3 * sizeof(float),
-                       policy->named || normals != NULL ? &options : NULL, report);
+                       policy->named || normals != NULL ? &options : NULL, report, NULL);
     if (r != MESHFIX_OK)
         return r;
     /* a flip writes (a, c, b): the second index tells */
@@ -628,13 +628,15 @@ static size_t count_damaged(const signed char *truth, size_t n, const unsigned c
 static meshfix_result best_by_patch(file_work *w, size_t *best)
 {
     meshfix_options options;
+    meshfix_outputs outputs;
     size_t n = w->mesh.triangles, t, p;
     meshfix_result r;
     memset(&options, 0, sizeof(options));
+    memset(&outputs, 0, sizeof(outputs));
     options.policy = MESHFIX_POLICY_SEED;
-    options.patch_ids = w->patch_ids;
-    options.flipped = w->flipped_seed;
-    r = meshfix_orient(NULL, w->indices, 3 * n, w->mesh.corners, 3 * n, 3 * sizeof(float), &options, NULL);
+    outputs.patch_ids = w->patch_ids;
+    outputs.flipped = w->flipped_seed;
+    r = meshfix_orient(NULL, w->indices, 3 * n, w->mesh.corners, 3 * n, 3 * sizeof(float), &options, NULL, &outputs);
     if (r != MESHFIX_OK)
         return r;
     for (t = 0; t < n; t++) {
@@ -668,10 +670,10 @@ static meshfix_result repair_both(file_work *w, const policy_choice *policy, int
     score->orient_ms = now_ms() - start;
     if (r != MESHFIX_OK)
         return r;
-    score->patches = report.patches;
-    score->components = report.components;
-    score->edges_boundary = report.edges_boundary;
-    score->edges_inconsistent = report.edges_inconsistent_input;
+    score->patches = report.mesh.patches;
+    score->components = report.mesh.components;
+    score->edges_boundary = report.mesh.edges_boundary;
+    score->edges_inconsistent = report.edges_inconsistent_before;
     reverse_random_half(w, seed);
     return repair(policy, normals, w->altered, n, w->mesh.corners, 3 * n, w->repaired, w->flipped_half, NULL);
 }

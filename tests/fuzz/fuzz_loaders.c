@@ -21,7 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     if (mio_parse((const char *)data + 1, size - 1, formats[data[0] % 4], &mesh, error, sizeof(error))) {
         meshfix_orient(mesh.indices, mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count, 12, NULL,
-                       &report);
+                       &report, NULL);
         mio_free(&mesh);
     }
     return 0;

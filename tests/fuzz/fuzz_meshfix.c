@@ -33,6 +33,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     float confidence[200];
     meshfix_component components[4];
     meshfix_options o;
+    meshfix_outputs outputs;
     meshfix_report r;
     size_t vertices, count = 0, i;
     int call, raw_floats, raw_indices;
@@ -61,33 +62,34 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
     memset(&o, 0, sizeof(o));
-    o.sdf = cheap_sdf;
-    o.visibility_rays = 256;
-    o.flipped = flipped;
-    o.patch_ids = patch_ids;
-    o.patch_confidence = confidence;
-    o.patch_confidence_capacity = 200;
-    o.components = components;
-    o.components_capacity = 4;
+    memset(&outputs, 0, sizeof(outputs));
+    o.sdf.distance = cheap_sdf;
+    o.visibility.rays = 256;
+    outputs.flipped = flipped;
+    outputs.patch_ids = patch_ids;
+    outputs.patch_confidence = confidence;
+    outputs.patch_confidence_capacity = 200;
+    outputs.components = components;
+    outputs.components_capacity = 4;
     switch (call) {
     case 0:
-        meshfix_inspect_ex(indices, count, positions, vertices, 12, &o, &r);
+        meshfix_inspect(indices, count, positions, vertices, 12, &o, &r, &outputs);
         break;
     case 7:
         meshfix_weld(remap, positions, vertices, 12, raw_floats ? 0.5f : 0.0f, NULL, &i);
         break;
     case 8:
-        meshfix_check(indices, count, positions, vertices, 12, MESHFIX_REQUIRE_SOLID);
+        meshfix_check(indices, count, positions, vertices, 12, MESHFIX_REQUIRE_SOLID, NULL, NULL);
         break;
     case 9: /* without positions */
-        meshfix_orient(out, indices, count, NULL, vertices, 0, &o, &r);
+        meshfix_orient(out, indices, count, NULL, vertices, 0, &o, &r, &outputs);
         break;
     default: {
         static const meshfix_policy policies[6] = {MESHFIX_POLICY_AUTO, MESHFIX_POLICY_OUTWARD,
                                                    MESHFIX_POLICY_VISIBILITY, MESHFIX_POLICY_SDF,
                                                    MESHFIX_POLICY_UP, MESHFIX_POLICY_MAJORITY};
         o.policy = policies[call - 1];
-        if (meshfix_orient(out, indices, count, positions, vertices, 12, &o, &r) == MESHFIX_OK && count % 3 == 0) {
+        if (meshfix_orient(out, indices, count, positions, vertices, 12, &o, &r, &outputs) == MESHFIX_OK && count % 3 == 0) {
             /* the output is a reordering of each input triangle's corners */
             for (i = 0; i < count; i += 3)
                 if (out[i] != indices[i])
