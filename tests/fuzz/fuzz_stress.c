@@ -12,10 +12,16 @@
                        huge values), outputs and their capacities,
                        allocator, scratch, parallel_for hook, SDF
                        callback, stride, vertex-count skew, destination
-                       layout, weld tolerance, check requirements, and
-                       (last, added with the NORMALS policy)
-                       evidence_sigma, min_confidence and caller normals
-                       per triangle or per vertex with their strides;
+                       layout, weld tolerance, check requirements,
+                       (added with the NORMALS policy) evidence.sigma,
+                       min_confidence and caller normals per triangle or
+                       per vertex with their strides, and (last, added
+                       with the 0.2 API) index_size (16-bit indices when
+                       the vertices fit), position_size (doubles, moved
+                       far from the origin, scaled beyond float range,
+                       with bits below float precision), the topology
+                       (POSITIONS, INDICES, WELD and its tolerance), the
+                       double stride and meshfix_summary's buffer size;
      [mesh program]    a list of operations (see build_mesh) that append
                        vertices and triangles, up to MAX_VERTICES and
                        MAX_TRIANGLES: single vertices in eight coordinate
@@ -34,12 +40,22 @@
    success returns each triangle as given or as (a, c, b), counts its
    flips right, writes no output beyond its size or capacity, and is
    bit-identical with and without parallel_for (run in reverse or
-   shuffled; fresh memory holds different garbage in the two runs, so a
-   read of memory never written shows too). SEED and MAJORITY are
-   idempotent. Reports agree with meshfix_inspect of the input and of the
-   output. Scratch of meshfix_scratch_size() bytes means no allocation.
-   meshfix_check agrees with inspect; weld clusters are checked against
-   their definition. Nothing leaks (the allocator counts its blocks).
+   shuffled) and with other garbage in fresh memory (so a read of memory
+   never written shows too), and with 16-bit indices as with the same
+   indices in 32 bits. SEED and MAJORITY are idempotent. Reports agree
+   with meshfix_inspect of the input and of the output, their edge and
+   degenerate counts with the edges computed here on the vertices the
+   topology makes (bit-identical positions by sorting, a weld by
+   meshfix_weld over the finite vertices), report.verdict with the counts,
+   patches_flipped / patches_doubtful / triangles_doubtful with the
+   per-patch outputs; meshfix_summary returns the whole length for any
+   buffer (0 and 1 included) and terminates within it. Scratch of
+   meshfix_scratch_size() bytes means no allocation. meshfix_check agrees
+   with inspect, and its failure names the first failing requirement, its
+   count, the lowest failing triangle and an edge of it that fails, in a
+   line terminated within its array. Weld clusters (floats or doubles)
+   are checked against their definition. Nothing leaks (the allocator
+   counts its blocks).
 
    Build: clang -g -O1 -fsanitize=fuzzer,address,undefined tests/fuzz/fuzz_stress.c -lm
    Seeds: tests/fuzz/make_seeds.c writes tests/fuzz/corpus/stress/. */
@@ -47,30 +63,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Known findings (tests/fuzz/crashes/README.md) stop a strict run within
-   seconds. Build with -DSTRESS_TOLERATE_KNOWN to skip the checks or the
-   inputs they trip, so that a long run looks for new ones, or with one of
-   the macros below to tolerate one finding alone (to minimize another).
-   Reads of memory the library never wrote: build with
-   -fsanitize=fuzzer,memory (run.sh: FUZZ_TARGETS=stress-msan). */
+/* Findings (tests/fuzz/crashes/README.md) stop a strict run. Findings
+   1 to 6 of the first session are fixed in meshfix.h, so the oracles below
+   hold them strictly. A finding that is still open gets a
+   STRESS_TOLERATE_* macro that skips the check or the inputs it trips,
+   so that a long run goes on looking for new ones;
+   -DSTRESS_TOLERATE_KNOWN turns on every such macro. Reads of memory the
+   library never wrote: build with -fsanitize=fuzzer,memory (run.sh:
+   FUZZ_TARGETS=stress-msan). */
 #ifdef STRESS_TOLERATE_KNOWN
-#define STRESS_TOLERATE_COMPONENTS     /* finding 1: patches land in the wrong component */
-#define STRESS_TOLERATE_NORMAL_STRIDES /* finding 2: normal strides are not validated */
-#define STRESS_TOLERATE_EVIDENCE       /* finding 4: evidence_sigma and min_confidence are not validated */
-#define STRESS_TOLERATE_ARENA          /* finding 6: the geometry arena is counted short */
 #endif
 
 /* The library's internal invariants (MESHFIX_ASSERT, a documented
-   configuration macro): reported with their text; finding 6's assertion
-   can be tolerated, and then its take fails as in a release build. */
+   configuration macro): reported with their text. */
 static void stress_assert(int ok, const char *expression, const char *file, int line)
 {
     if (ok)
         return;
-#ifdef STRESS_TOLERATE_ARENA
-    if (strcmp(expression, "fits") == 0)
-        return;
-#endif
     fprintf(stderr, "fuzz_stress: meshfix assertion failed: %s (%s:%d)\n", expression, file, line);
     abort();
 }
@@ -367,6 +376,17 @@ typedef struct settings {
     int call_inspect, call_check, call_weld, call_second;
     float weld_tolerance;
     unsigned int requirements;
+    /* formats (0.2): raw values as decoded (may be invalid) */
+    unsigned int index_size, position_size, topology;
+    float topology_tolerance;
+    /* double positions: offset (far from the origin), scale, jitter below float precision */
+    int double_offset_kind, double_jitter;
+    double double_offset;
+    int double_exponent;
+    size_t double_stride;
+    uint64_t double_seed;
+    size_t summary_size;   /* the buffer meshfix_summary gets (0 and 1 included) */
+    int outputs_null;      /* no output wanted: pass NULL rather than an empty struct */
 } settings;
 
 static size_t decode_rays(source *s)
@@ -409,14 +429,40 @@ static unsigned int decode_min_samples(source *s)
     }
 }
 
-static int stride_valid(size_t stride)
+/* A positions stride for x y z of `size` bytes each: 0 (packed), or at
+   least the three coordinates in 4-byte steps. */
+static int stride_valid(size_t stride, unsigned int size)
 {
-    return stride >= 12 && stride % 4 == 0;
+    return stride == 0 || (stride >= 3 * (size_t)size && stride % 4 == 0);
+}
+
+/* normals: 0 (12 bytes) or whole floats, at least three */
+static int normal_stride_valid(size_t stride)
+{
+    return stride == 0 || (stride >= 12 && stride % 4 == 0);
 }
 
 static const size_t strides[16] = {12, 12, 12, 12, 16, 16, 20, 24, 32, 48, 12, 0, 4, 8, 13, 14};
+/* doubles: 24 packed; 28 and 36 put doubles on 4-byte boundaries; 12 to 26 are not valid */
+static const size_t double_strides[16] = {24, 24, 24, 0, 0, 32, 40, 48, 28, 36, 24, 12, 16, 20, 25, 26};
 /* normals: stride 0 is documented as 12 bytes; 4 and 13 are not valid */
 static const size_t normal_strides[8] = {0, 12, 12, 16, 24, 0, 4, 13};
+
+/* index_size and position_size: the default (0), the other size, the
+   explicit default, or any value */
+static unsigned int decode_size(source *s, uint8_t b, unsigned int other, unsigned int standard)
+{
+    switch (b % 4) {
+    case 0:
+        return 0;
+    case 1:
+        return other;
+    case 2:
+        return standard;
+    default:
+        return take_u32(s);
+    }
+}
 
 static void read_settings(source *s, settings *st)
 {
@@ -495,10 +541,6 @@ static void read_settings(source *s, settings *st)
     /* fields added with the NORMALS policy, last so older seeds still decode */
     st->evidence_sigma = decode_option_float(s);
     st->min_confidence = decode_option_float(s);
-#ifdef STRESS_TOLERATE_EVIDENCE
-    st->evidence_sigma = is_finite_bits(st->evidence_sigma) ? fabsf(st->evidence_sigma) : 0.0f;
-    st->min_confidence = is_finite_bits(st->min_confidence) ? fabsf(st->min_confidence) : 0.0f;
-#endif
     b = take_u8(s);
     st->triangle_normals = (b & 1) != 0;
     st->vertex_normals = (b & 2) != 0;
@@ -506,11 +548,39 @@ static void read_settings(source *s, settings *st)
     b = take_u8(s);
     st->triangle_normals_stride = normal_strides[b % 8];
     st->vertex_normals_stride = normal_strides[(b >> 3) % 8];
-#ifdef STRESS_TOLERATE_NORMAL_STRIDES
-    st->triangle_normals_stride = stride_valid(st->triangle_normals_stride) ? st->triangle_normals_stride : 12;
-    st->vertex_normals_stride = stride_valid(st->vertex_normals_stride) ? st->vertex_normals_stride : 12;
-#endif
     st->normals_seed = take_u64(s);
+    /* fields added with the 0.2 API: formats, topology, double positions, summary */
+    st->index_size = decode_size(s, take_u8(s), 2, 4);
+    st->position_size = decode_size(s, take_u8(s), 8, 4);
+    b = take_u8(s);
+    st->topology = b < 240 ? b % 3u : take_u32(s);
+    st->topology_tolerance = decode_option_float(s);
+    b = take_u8(s);
+    st->double_offset_kind = b % 4;
+    st->double_jitter = (b & 4) != 0;
+    st->double_exponent = (b & 8) ? (int)(int8_t)take_u8(s) * 8 : 0; /* beyond float range both ways */
+    switch (st->double_offset_kind) {
+    case 1: { /* +-2^k: survey coordinates, or far beyond */
+        uint8_t k = take_u8(s);
+        st->double_offset = ldexp((k & 128) ? -1.0 : 1.0, k % 80);
+        break;
+    }
+    case 2: { /* any bits: NaN, Inf, huge, denormal */
+        uint64_t bits = take_u64(s);
+        memcpy(&st->double_offset, &bits, sizeof(bits));
+        break;
+    }
+    case 3: /* c * 10^k: a decimal coordinate system */
+        st->double_offset = (double)(int8_t)take_u8(s) * pow(10.0, (double)(take_u8(s) % 16));
+        break;
+    default:
+        st->double_offset = 0.0;
+    }
+    st->double_stride = double_strides[take_u8(s) % 16];
+    st->double_seed = take_u64(s);
+    b = take_u8(s);
+    st->summary_size = b < 64 ? b % 8u : b; /* 0 .. 7 often: 0 and 1 included */
+    st->outputs_null = (take_u8(s) & 1) != 0;
 }
 
 /* ===== the mesh program ===== */
@@ -969,15 +1039,165 @@ static void *fill_alloc(size_t bytes, uint8_t fill);
 typedef struct fuzz_case {
     const settings *st;
     const mesh *m;
-    unsigned int *indices; /* pristine copy, index_count long */
+    unsigned int *indices; /* pristine copy, index_count long, as 32-bit values */
+    void *call_indices;    /* the same in the call's format (index_size bytes each) */
     size_t index_count, triangles;
-    float *positions;      /* NULL, or vertex_count vertices of stride bytes */
+    void *positions;       /* NULL, or vertex_count vertices of stride bytes, floats or doubles */
     size_t positions_bytes;
     size_t vertex_count, stride;
     unsigned int max_index;
-    size_t degenerate;
+    /* the formats every call of the case uses (valid values): the raw
+       settings go only to the refusal call */
+    unsigned int index_size, position_size; /* 2 or 4; 4 or 8 */
+    meshfix_topology topology;              /* INDICES when there are no positions */
+    float topology_tolerance;
+    unsigned int *rep;     /* vertex_count: the lowest vertex each is one with (topology) */
+    unsigned char *degenerate_at; /* per triangle: repeats a vertex after the topology */
+    size_t degenerate, joined;
     float *triangle_normals, *vertex_normals; /* NULL or the caller normals */
 } fuzz_case;
+
+static unsigned int index_at(const void *indices, unsigned int size, size_t i)
+{
+    return size == 2 ? ((const uint16_t *)indices)[i] : ((const unsigned int *)indices)[i];
+}
+
+/* indices in the call's format */
+static void *encode_indices(const unsigned int *indices, size_t count, unsigned int size)
+{
+    void *out = malloc(count ? count * size : 1);
+    size_t i;
+    REQUIRE(out != NULL, "harness out of memory");
+    for (i = 0; i < count; ++i) {
+        if (size == 2)
+            ((uint16_t *)out)[i] = (uint16_t)indices[i];
+        else
+            ((unsigned int *)out)[i] = indices[i];
+    }
+    return out;
+}
+
+static size_t effective_stride(const fuzz_case *fc)
+{
+    return fc->stride ? fc->stride : 3 * (size_t)fc->position_size;
+}
+
+/* Vertex v as the caller gave it, in double (floats widen exactly);
+   returns 0 when a coordinate is NaN or infinite. */
+static int read_vertex(const fuzz_case *fc, size_t v, double p[3])
+{
+    const char *q = (const char *)fc->positions + v * effective_stride(fc);
+    int k, finite = 1;
+    for (k = 0; k < 3; ++k) {
+        if (fc->position_size == 8) {
+            memcpy(&p[k], q + 8 * k, 8);
+        } else {
+            float x;
+            memcpy(&x, q + 4 * k, 4);
+            p[k] = (double)x;
+        }
+        finite = finite && p[k] - p[k] == 0.0;
+    }
+    return finite;
+}
+
+/* The topology by definition: bit-identical positions (-0 = +0; a NaN or
+   infinite vertex joins nothing) by sorting, a weld within the tolerance
+   by meshfix_weld over the finite vertices alone (checked against its
+   definition by check_weld), or indices. rep[v]: the lowest vertex v is
+   one with. */
+static const fuzz_case *sort_case;
+static int compare_positions(const void *pa, const void *pb)
+{
+    unsigned int a = *(const unsigned int *)pa, b = *(const unsigned int *)pb;
+    double x[3], y[3];
+    int k;
+    read_vertex(sort_case, a, x);
+    read_vertex(sort_case, b, y);
+    for (k = 0; k < 3; ++k) {
+        uint64_t bx, by;
+        x[k] = x[k] == 0.0 ? 0.0 : x[k], y[k] = y[k] == 0.0 ? 0.0 : y[k];
+        memcpy(&bx, &x[k], 8), memcpy(&by, &y[k], 8);
+        if (bx != by)
+            return bx < by ? -1 : 1;
+    }
+    return a < b ? -1 : a > b;
+}
+
+static void compute_topology(fuzz_case *fc)
+{
+    size_t n = fc->vertex_count, v, i, finite_count = 0;
+    unsigned int *order, *seen;
+    fc->rep = (unsigned int *)malloc((n ? n : 1) * sizeof(unsigned int));
+    REQUIRE(fc->rep != NULL, "harness out of memory");
+    for (v = 0; v < n; ++v)
+        fc->rep[v] = (unsigned int)v;
+    if (fc->positions != NULL && fc->topology != MESHFIX_TOPOLOGY_INDICES && n != 0) {
+        order = (unsigned int *)malloc(n * sizeof(unsigned int));
+        REQUIRE(order != NULL, "harness out of memory");
+        for (v = 0; v < n; ++v) {
+            double p[3];
+            if (read_vertex(fc, v, p))
+                order[finite_count++] = (unsigned int)v;
+        }
+        if (fc->topology == MESHFIX_TOPOLOGY_POSITIONS) {
+            sort_case = fc;
+            qsort(order, finite_count, sizeof(unsigned int), compare_positions);
+            for (i = 0; i < finite_count;) {
+                size_t j = i + 1;
+                double a[3], b[3];
+                read_vertex(fc, order[i], a);
+                for (; j < finite_count; ++j) {
+                    int k, same = 1;
+                    read_vertex(fc, order[j], b);
+                    for (k = 0; k < 3; ++k)
+                        same = same && a[k] == b[k]; /* finite: equal as doubles = bits equal but for -0 */
+                    if (!same)
+                        break;
+                    fc->rep[order[j]] = order[i]; /* sorted by (position, index): the first is the lowest */
+                }
+                i = j;
+            }
+        } else {
+            double *packed = (double *)malloc((finite_count ? finite_count : 1) * 3 * sizeof(double));
+            unsigned int *remap = (unsigned int *)malloc((finite_count ? finite_count : 1) * sizeof(unsigned int));
+            meshfix_options o;
+            size_t unique;
+            REQUIRE(packed != NULL && remap != NULL, "harness out of memory");
+            for (i = 0; i < finite_count; ++i)
+                read_vertex(fc, order[i], &packed[3 * i]);
+            memset(&o, 0, sizeof(o));
+            o.position_size = 8;
+            REQUIRE(meshfix_weld(remap, packed, finite_count, 0, fc->topology_tolerance, &o, &unique) == MESHFIX_OK,
+                    "meshfix_weld refused finite doubles (the reference topology)");
+            for (i = 0; i < finite_count; ++i)
+                fc->rep[order[i]] = order[remap[i]];
+            free(packed);
+            free(remap);
+        }
+        free(order);
+    }
+    /* degenerate triangles and joined indices, as the report counts them */
+    fc->degenerate_at = (unsigned char *)malloc(fc->triangles ? fc->triangles : 1);
+    seen = (unsigned int *)calloc(n ? n : 1, sizeof(unsigned int));
+    REQUIRE(fc->degenerate_at != NULL && seen != NULL, "harness out of memory");
+    fc->degenerate = fc->joined = 0;
+    for (i = 0; i < fc->triangles; ++i) {
+        const unsigned int *t = &fc->indices[3 * i];
+        unsigned int a = t[0] < n ? fc->rep[t[0]] : t[0], b = t[1] < n ? fc->rep[t[1]] : t[1];
+        unsigned int c = t[2] < n ? fc->rep[t[2]] : t[2];
+        fc->degenerate_at[i] = a == b || b == c || a == c;
+        fc->degenerate += fc->degenerate_at[i];
+    }
+    for (i = 0; i < 3 * fc->triangles; ++i) {
+        unsigned int x = fc->indices[i];
+        if (x < n && !seen[x]) {
+            seen[x] = 1;
+            fc->joined += fc->rep[x] != x;
+        }
+    }
+    free(seen);
+}
 
 /* One caller normal: the face normal of the triangle as built (kind 0),
    that reversed at random (1), a random direction in any encoding,
@@ -1032,6 +1252,32 @@ static float *make_normals(const fuzz_case *fc, size_t count, size_t stride, int
     return (float *)(void *)buffer;
 }
 
+/* The formats of the case: the decoded values where valid, else the
+   defaults; 16-bit indices only when every vertex fits. */
+static void case_formats(fuzz_case *fc, const settings *st)
+{
+    fc->index_size = st->index_size == 2 && fc->vertex_count <= 65536 ? 2u : 4u;
+    fc->position_size = st->position_size == 8 ? 8u : 4u;
+    fc->topology = st->topology <= MESHFIX_TOPOLOGY_WELD ? (meshfix_topology)st->topology : MESHFIX_TOPOLOGY_POSITIONS;
+    fc->topology_tolerance = is_finite_bits(st->topology_tolerance) ? fabsf(st->topology_tolerance) : 0.0f;
+    if (st->positions_null)
+        fc->topology = MESHFIX_TOPOLOGY_INDICES; /* what the library uses without positions */
+}
+
+/* A built float coordinate as a double: scaled by 2^e, moved by the
+   offset, and (jitter) given bits below float precision. */
+static double to_double(const settings *st, float x, source *g)
+{
+    double d = ldexp((double)x, st->double_exponent) + st->double_offset;
+    if (st->double_jitter && d - d == 0.0 && d != 0.0) {
+        uint64_t bits;
+        memcpy(&bits, &d, 8);
+        bits ^= take_u32(g) & 0x1FFFFFFFu; /* the 29 bits a float does not have */
+        memcpy(&d, &bits, 8);
+    }
+    return d;
+}
+
 static void setup_case(fuzz_case *fc, const settings *st, const mesh *m)
 {
     size_t i, v, built = m->vertices;
@@ -1040,17 +1286,6 @@ static void setup_case(fuzz_case *fc, const settings *st, const mesh *m)
     fc->m = m;
     fc->index_count = 3 * m->triangles + st->trailing;
     fc->triangles = fc->index_count / 3;
-    fc->indices = (unsigned int *)malloc((fc->index_count ? fc->index_count : 1) * sizeof(unsigned int));
-    REQUIRE(fc->indices != NULL, "harness out of memory");
-    memcpy(fc->indices, m->tri, 3 * m->triangles * sizeof(unsigned int));
-    for (i = 3 * m->triangles; i < fc->index_count; ++i)
-        fc->indices[i] = 0;
-    for (i = 0; i < fc->index_count; ++i)
-        fc->max_index = fc->indices[i] > fc->max_index ? fc->indices[i] : fc->max_index;
-    for (i = 0; i + 2 < fc->index_count; i += 3) {
-        const unsigned int *t = &fc->indices[i];
-        fc->degenerate += t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-    }
     /* vertex_count may be smaller than what was built (indices out of
        range: the positions buffer then ends early, so a read past the
        checked count is an ASan error) or larger (unused NaN vertices) */
@@ -1058,30 +1293,60 @@ static void setup_case(fuzz_case *fc, const settings *st, const mesh *m)
         fc->vertex_count = built + (size_t)st->vertex_skew;
     else
         fc->vertex_count = (size_t)-st->vertex_skew <= built ? built - (size_t)-st->vertex_skew : 0;
-    fc->stride = st->stride;
+    case_formats(fc, st);
+    fc->indices = (unsigned int *)malloc((fc->index_count ? fc->index_count : 1) * sizeof(unsigned int));
+    REQUIRE(fc->indices != NULL, "harness out of memory");
+    memcpy(fc->indices, m->tri, 3 * m->triangles * sizeof(unsigned int));
+    for (i = 3 * m->triangles; i < fc->index_count; ++i)
+        fc->indices[i] = 0;
+    if (fc->index_size == 2) /* what 16 bits hold of the program's indices (raw ones included) */
+        for (i = 0; i < fc->index_count; ++i)
+            fc->indices[i] &= 0xFFFFu;
+    fc->call_indices = encode_indices(fc->indices, fc->index_count, fc->index_size);
+    for (i = 0; i < fc->index_count; ++i)
+        fc->max_index = fc->indices[i] > fc->max_index ? fc->indices[i] : fc->max_index;
+    fc->stride = fc->position_size == 8 ? st->double_stride : st->stride;
     if (st->triangle_normals)
         fc->triangle_normals = make_normals(fc, fc->triangles, st->triangle_normals_stride, 0);
     if (st->vertex_normals)
         fc->vertex_normals = make_normals(fc, fc->vertex_count, st->vertex_normals_stride, 1);
-    if (st->positions_null)
-        return;
-    {
-        size_t stride = fc->stride < 12 ? 12 : fc->stride;
-        fc->positions_bytes = fc->vertex_count ? (fc->vertex_count - 1) * stride + 12 : 0;
-        fc->positions = (float *)malloc(fc->positions_bytes ? fc->positions_bytes : 1);
+    if (!st->positions_null) {
+        size_t stride = effective_stride(fc), size = 3 * (size_t)fc->position_size;
+        source g;
+        memset(&g, 0, sizeof(g));
+        g.use_rng = 1, g.rng = st->double_seed;
+        stride = stride < size ? size : stride; /* an invalid stride is refused; the buffer still holds the vertices */
+        fc->positions_bytes = fc->vertex_count ? (fc->vertex_count - 1) * stride + size : 0;
+        fc->positions = malloc(fc->positions_bytes ? fc->positions_bytes : 1);
         REQUIRE(fc->positions != NULL, "harness out of memory");
         memset(fc->positions, 0xFF, fc->positions_bytes); /* padding and extra vertices: NaN */
-        for (v = 0; v < fc->vertex_count && v < built; ++v)
-            memcpy((char *)fc->positions + v * stride, &m->xyz[3 * v], 12);
+        for (v = 0; v < fc->vertex_count && v < built; ++v) {
+            char *q = (char *)fc->positions + v * stride;
+            if (fc->position_size == 8) {
+                double d[3];
+                int k;
+                for (k = 0; k < 3; ++k)
+                    d[k] = to_double(st, m->xyz[3 * v + (size_t)k], &g);
+                memcpy(q, d, 24);
+            } else {
+                memcpy(q, &m->xyz[3 * v], 12);
+            }
+        }
     }
+    if (fc->positions != NULL && !stride_valid(fc->stride, fc->position_size))
+        fc->topology = MESHFIX_TOPOLOGY_INDICES; /* every call is refused: no topology to compute */
+    compute_topology(fc);
 }
 
 static void free_case(fuzz_case *fc)
 {
     free(fc->indices);
+    free(fc->call_indices);
     free(fc->positions);
     free(fc->triangle_normals);
     free(fc->vertex_normals);
+    free(fc->rep);
+    free(fc->degenerate_at);
 }
 
 static int uses_positions_policy(int policy)
@@ -1095,6 +1360,7 @@ typedef struct call_options {
     meshfix_options o;
     int policy;                 /* as passed (may be out of range) */
     int clearly_invalid;        /* NaN, Inf, negative, rays or floor past the limits, bad enum */
+    int format_invalid;         /* index_size, position_size, topology or its tolerance: refused by every call */
     int maybe_invalid;          /* finite but past a documented fraction: either answer is fine */
     int scratch_full;           /* scratch of at least meshfix_scratch_size(): no allocation */
 } call_options;
@@ -1102,6 +1368,23 @@ typedef struct call_options {
 static int float_clearly_invalid(float x)
 {
     return !is_finite_bits(x) || x < 0.0f;
+}
+
+/* The formats of the case (valid), or (raw) as decoded. */
+static void set_formats(const fuzz_case *fc, int raw, meshfix_options *o)
+{
+    const settings *st = fc->st;
+    o->index_size = raw ? st->index_size : fc->index_size;
+    o->position_size = raw ? st->position_size : fc->position_size;
+    o->topology = raw ? (meshfix_topology)st->topology : fc->topology;
+    o->weld_tolerance = raw ? st->topology_tolerance : fc->topology_tolerance;
+    if (!raw) {
+        /* the valid spellings of the same formats: 0 for the defaults when the settings say so */
+        if (st->index_size == 0 && fc->index_size == 4)
+            o->index_size = 0;
+        if (st->position_size == 0 && fc->position_size == 4)
+            o->position_size = 0;
+    }
 }
 
 /* Options for the main call: the decoded values, or (sanitize) the same
@@ -1112,100 +1395,110 @@ static void make_options(const fuzz_case *fc, int sanitize, counters *count, sdf
 {
     const settings *st = fc->st;
     meshfix_options *o = &co->o;
-    float *floats[8];
+    float *floats[10];
     int i;
     memset(co, 0, sizeof(*co));
     co->policy = st->policy;
     o->policy = (meshfix_policy)st->policy;
-    o->visibility_rays = st->rays;
-    o->visibility_min_samples = st->min_samples;
-    o->coherence_distance = st->coherence;
-    o->visibility_c0 = st->c0;
-    o->visibility_eps = st->eps;
-    o->visibility_kv = st->kv;
-    o->sdf_step = st->sdf_step;
+    set_formats(fc, !sanitize, o);
+    o->visibility.rays = st->rays;
+    o->visibility.min_samples = st->min_samples;
+    o->visibility.coherence_distance = st->coherence;
+    o->visibility.c0 = st->c0;
+    o->visibility.eps = st->eps;
+    o->visibility.kv = st->kv;
+    o->sdf.step = st->sdf_step;
     o->up[0] = st->up[0], o->up[1] = st->up[1], o->up[2] = st->up[2];
-    o->sdf_mode = (meshfix_sdf_mode)st->sdf_mode;
-    o->visibility_flags = st->visibility_flags;
+    o->sdf.mode = (meshfix_sdf_mode)st->sdf_mode;
+    o->visibility.flags = st->visibility_flags;
     o->seed = st->seed;
-    o->evidence_sigma = st->evidence_sigma;
-    o->min_confidence = st->min_confidence;
+    o->evidence.sigma = st->evidence_sigma;
+    o->evidence.min_confidence = st->min_confidence;
     if (st->sdf_present)
-        o->sdf = stress_sdf;
+        o->sdf.distance = stress_sdf;
     if (st->sdf_gradient)
-        o->sdf_gradient = stress_sdf_gradient;
-    o->sdf_user = su;
+        o->sdf.gradient = stress_sdf_gradient;
+    o->sdf.user = su;
     if (st->parallel_mode != PARALLEL_NONE) {
         o->parallel_for = stress_parallel_for;
         o->parallel_user = pu;
     }
     if (st->alloc_mode != ALLOC_DEFAULT) {
-        o->allocator.alloc_fn = counting_alloc;
-        o->allocator.free_fn = st->alloc_mode == ALLOC_NO_FREE ? NULL : counting_free;
-        o->allocator.user_data = count;
+        o->memory.alloc_func = counting_alloc;
+        o->memory.free_func = st->alloc_mode == ALLOC_NO_FREE ? NULL : counting_free;
+        o->memory.user_data = count;
     }
-    o->scratch = scratch;
-    o->scratch_size = scratch_size;
-    o->triangle_normals = fc->triangle_normals;
-    o->triangle_normals_stride = st->triangle_normals_stride;
-    o->vertex_normals = fc->vertex_normals;
-    o->vertex_normals_stride = st->vertex_normals_stride;
-    floats[0] = &o->coherence_distance, floats[1] = &o->visibility_c0, floats[2] = &o->visibility_eps;
-    floats[3] = &o->visibility_kv, floats[4] = &o->sdf_step;
-    floats[5] = &o->up[0], floats[6] = &o->up[1], floats[7] = &o->up[2];
+    o->memory.scratch = scratch;
+    o->memory.scratch_size = scratch_size;
+    o->evidence.triangle_normals = fc->triangle_normals;
+    o->evidence.triangle_normals_stride = st->triangle_normals_stride;
+    o->evidence.vertex_normals = fc->vertex_normals;
+    o->evidence.vertex_normals_stride = st->vertex_normals_stride;
+    floats[0] = &o->visibility.coherence_distance, floats[1] = &o->visibility.c0, floats[2] = &o->visibility.eps;
+    floats[3] = &o->visibility.kv, floats[4] = &o->sdf.step;
+    floats[5] = &o->evidence.sigma, floats[6] = &o->evidence.min_confidence;
+    floats[7] = &o->up[0], floats[8] = &o->up[1], floats[9] = &o->up[2];
     if (sanitize) {
         co->policy = ((st->policy % MESHFIX_POLICY_COUNT) + MESHFIX_POLICY_COUNT) % MESHFIX_POLICY_COUNT;
         o->policy = (meshfix_policy)co->policy;
-        if (o->visibility_rays > RUN_RAYS_CAP)
-            o->visibility_rays %= RUN_RAYS_CAP + 1;
-        if (o->visibility_min_samples > REFUSED_MIN_SAMPLES_ABOVE)
-            o->visibility_min_samples %= REFUSED_MIN_SAMPLES_ABOVE + 1;
-        for (i = 0; i < 8; ++i) {
+        if (o->visibility.rays > RUN_RAYS_CAP)
+            o->visibility.rays %= RUN_RAYS_CAP + 1;
+        if (o->visibility.min_samples > REFUSED_MIN_SAMPLES_ABOVE)
+            o->visibility.min_samples %= REFUSED_MIN_SAMPLES_ABOVE + 1;
+        for (i = 0; i < 10; ++i) {
             float *x = floats[i];
             if (!is_finite_bits(*x))
                 *x = 0.0f;
-            if (i < 5) {
-                float most = i == 0 || i == 2 ? 1.0f : i == 4 ? 1e30f : 100.0f;
+            if (i < 7) {
+                /* coherence, c0, eps, kv, step, sigma, min_confidence */
+                static const float most[7] = {1.0f, 100.0f, 1.0f, 100.0f, 1e30f, 100.0f, 1.0f};
                 *x = *x < 0 ? -*x : *x;
-                *x = *x > most ? most : *x;
+                *x = *x > most[i] ? most[i] : *x;
             }
         }
-        o->sdf_mode = (meshfix_sdf_mode)(st->sdf_mode % 2u);
-        if (co->policy == MESHFIX_POLICY_SDF && o->sdf == NULL)
-            o->sdf = stress_sdf;
-        if (o->allocator.alloc_fn != NULL && o->allocator.free_fn == NULL)
-            o->allocator.free_fn = counting_free;
+        o->sdf.mode = (meshfix_sdf_mode)(st->sdf_mode % 2u);
+        if (co->policy == MESHFIX_POLICY_SDF && o->sdf.distance == NULL)
+            o->sdf.distance = stress_sdf;
+        if (o->memory.alloc_func != NULL && o->memory.free_func == NULL)
+            o->memory.free_func = counting_free;
+        /* the buffers are laid out with the decoded strides: without them */
+        if (!normal_stride_valid(o->evidence.triangle_normals_stride))
+            o->evidence.triangle_normals = NULL, o->evidence.triangle_normals_stride = 0;
+        if (!normal_stride_valid(o->evidence.vertex_normals_stride))
+            o->evidence.vertex_normals = NULL, o->evidence.vertex_normals_stride = 0;
     }
-    /* what the library must refuse, and what it may */
-    co->clearly_invalid = co->policy < 0 || co->policy >= MESHFIX_POLICY_COUNT ||
-                          o->visibility_rays > REFUSED_RAYS_ABOVE ||
-                          o->visibility_min_samples > REFUSED_MIN_SAMPLES_ABOVE ||
-                          (o->allocator.alloc_fn != NULL && o->allocator.free_fn == NULL) ||
-                          (co->policy == MESHFIX_POLICY_SDF && (o->sdf == NULL || (unsigned int)o->sdf_mode > 1u));
-    for (i = 0; i < 8; ++i)
-        co->clearly_invalid |= i < 5 ? float_clearly_invalid(*floats[i]) : !is_finite_bits(*floats[i]);
-    /* evidence_sigma and min_confidence are passed as decoded: their range
-       is not documented, so refusing NaN, Inf, negative or huge values is
-       allowed and accepting them must still give sane results; so are
-       normal strides that are not a multiple of 4 or below 12 */
-    co->maybe_invalid = o->coherence_distance > 1.0f || o->visibility_eps > 1.0f || o->visibility_c0 > 100.0f ||
-                        o->visibility_kv > 100.0f || o->sdf_step > 1e30f || !is_finite_bits(o->evidence_sigma) ||
-                        o->evidence_sigma < 0.0f || o->evidence_sigma > 100.0f ||
-                        !is_finite_bits(o->min_confidence) || o->min_confidence < 0.0f ||
-                        o->min_confidence > 1.0f ||
-                        (o->triangle_normals && o->triangle_normals_stride != 0 &&
-                         !stride_valid(o->triangle_normals_stride)) ||
-                        (o->vertex_normals && o->vertex_normals_stride != 0 && !stride_valid(o->vertex_normals_stride));
+    /* what every call must refuse: formats it cannot read */
+    co->format_invalid = (o->index_size != 0 && o->index_size != 2 && o->index_size != 4) ||
+                         (o->position_size != 0 && o->position_size != 4 && o->position_size != 8) ||
+                         (unsigned int)o->topology > (unsigned int)MESHFIX_TOPOLOGY_WELD ||
+                         float_clearly_invalid(o->weld_tolerance);
+    /* what orient must refuse, and what it may */
+    co->clearly_invalid = co->policy < 0 || co->policy >= MESHFIX_POLICY_COUNT || co->format_invalid ||
+                          o->visibility.rays > REFUSED_RAYS_ABOVE ||
+                          o->visibility.min_samples > REFUSED_MIN_SAMPLES_ABOVE ||
+                          (o->memory.alloc_func != NULL && o->memory.free_func == NULL) ||
+                          (co->policy == MESHFIX_POLICY_SDF &&
+                           (o->sdf.distance == NULL || (unsigned int)o->sdf.mode > 1u)) ||
+                          /* findings 2 and 4: normals strides, sigma and min_confidence are validated */
+                          !normal_stride_valid(o->evidence.triangle_normals_stride) ||
+                          !normal_stride_valid(o->evidence.vertex_normals_stride) ||
+                          o->evidence.min_confidence > 1.0f;
+    for (i = 0; i < 10; ++i)
+        co->clearly_invalid |= i < 7 ? float_clearly_invalid(*floats[i]) : !is_finite_bits(*floats[i]);
+    /* past the documented ranges: refusing is allowed, and accepting must still give sane results */
+    co->maybe_invalid = o->visibility.coherence_distance > 1.0f || o->visibility.eps > 1.0f ||
+                        o->visibility.c0 > 100.0f || o->visibility.kv > 100.0f || o->sdf.step > 1e30f ||
+                        o->evidence.sigma > 100.0f;
 }
 
 /* The cost of a call that gets to the work must stay bounded: the
    default budget (65536 rays and more) only on small meshes. */
 static void make_affordable(const fuzz_case *fc, call_options *co)
 {
-    if (co->o.visibility_rays > RUN_RAYS_CAP)
-        co->o.visibility_rays %= RUN_RAYS_CAP + 1;
-    if (co->o.visibility_rays == 0 && fc->triangles > DEFAULT_RAYS_MAX_TRIANGLES)
-        co->o.visibility_rays = RUN_RAYS_CAP;
+    if (co->o.visibility.rays > RUN_RAYS_CAP)
+        co->o.visibility.rays %= RUN_RAYS_CAP + 1;
+    if (co->o.visibility.rays == 0 && fc->triangles > DEFAULT_RAYS_MAX_TRIANGLES)
+        co->o.visibility.rays = RUN_RAYS_CAP;
 }
 
 /* ===== expected results ===== */
@@ -1213,11 +1506,18 @@ static void make_affordable(const fuzz_case *fc, call_options *co)
 /* The topology's share of the scratch: meshfix_scratch_size() for a policy
    that needs no geometry (documented as the topology alone). Less than
    this for the vertices the indices reach must be refused. */
-static size_t topology_scratch(size_t index_count, size_t vertex_count)
+static size_t topology_scratch(const fuzz_case *fc, size_t index_count, size_t vertex_count)
 {
     meshfix_options o;
     memset(&o, 0, sizeof(o));
     o.policy = MESHFIX_POLICY_SEED;
+    set_formats(fc, 0, &o);
+    if (fc->positions == NULL) {
+        /* meshfix_scratch_size counts for positions, whose formats this
+           call does not have: no join, no float copy of doubles */
+        o.topology = MESHFIX_TOPOLOGY_INDICES;
+        o.position_size = 0;
+    }
     return meshfix_scratch_size(index_count, vertex_count, &o);
 }
 
@@ -1236,11 +1536,13 @@ static expectation expect_run(const fuzz_case *fc, const call_options *co, const
     int has_positions = fc->positions != NULL;
     if (fc->index_count % 3 != 0)
         e.required |= BIT(MESHFIX_ERROR_NOT_TRIANGLES);
-    if (has_positions && !stride_valid(fc->stride))
+    if (has_positions && !stride_valid(fc->stride, fc->position_size))
         e.required |= BIT(MESHFIX_ERROR_INVALID_ARGUMENT);
     if (fc->index_count != 0 && (size_t)fc->max_index >= fc->vertex_count)
         e.required |= BIT(MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
-    if (o->allocator.alloc_fn != NULL && o->allocator.free_fn == NULL)
+    if (o->memory.alloc_func != NULL && o->memory.free_func == NULL)
+        e.required |= BIT(MESHFIX_ERROR_INVALID_ARGUMENT);
+    if (co->format_invalid)
         e.required |= BIT(MESHFIX_ERROR_INVALID_ARGUMENT);
     if (is_orient) {
         if (co->clearly_invalid)
@@ -1254,21 +1556,16 @@ static expectation expect_run(const fuzz_case *fc, const call_options *co, const
     }
     if (co->maybe_invalid)
         e.allowed |= BIT(MESHFIX_ERROR_INVALID_ARGUMENT);
-    if (o->scratch != NULL && fc->index_count != 0 && fc->index_count % 3 == 0 &&
+    if (o->memory.scratch != NULL && fc->index_count != 0 && fc->index_count % 3 == 0 &&
         (size_t)fc->max_index < fc->vertex_count &&
-        o->scratch_size < topology_scratch(fc->index_count, (size_t)fc->max_index + 1))
+        o->memory.scratch_size < topology_scratch(fc, fc->index_count, (size_t)fc->max_index + 1))
         e.required |= BIT(MESHFIX_ERROR_SCRATCH_TOO_SMALL);
     /* between the topology's share and meshfix_scratch_size(), the
        geometry of the mesh at hand may or may not fit */
-    if (o->scratch != NULL && !co->scratch_full)
+    if (o->memory.scratch != NULL && !co->scratch_full)
         e.allowed |= BIT(MESHFIX_ERROR_SCRATCH_TOO_SMALL);
     if (count->fail_at != 0 && !co->scratch_full)
         e.allowed |= BIT(MESHFIX_ERROR_OUT_OF_MEMORY);
-#ifdef STRESS_TOLERATE_ARENA /* finding 6: the arena's last take fails, reported as out of memory */
-    if (is_orient && (co->policy == MESHFIX_POLICY_AUTO || co->policy == MESHFIX_POLICY_OUTWARD ||
-                      co->policy == MESHFIX_POLICY_VISIBILITY))
-        e.allowed |= BIT(MESHFIX_ERROR_OUT_OF_MEMORY);
-#endif
     return e;
 }
 
@@ -1287,14 +1584,16 @@ static void check_result(meshfix_result r, expectation e, const char *call)
 /* ===== outputs of one call, with snapshots ===== */
 
 typedef struct outputs {
-    unsigned int *block;  /* indices and destination as the call sees them */
-    size_t block_len;
-    unsigned int *indices, *destination; /* inside block, or separate (dest_extra) */
-    unsigned int *dest_extra;
+    unsigned char *block;  /* indices and destination as the call sees them */
+    size_t block_len;      /* in indices of index_size bytes */
+    unsigned int index_size;
+    void *indices, *destination; /* inside block, or separate (dest_extra) */
+    unsigned char *dest_extra;
     unsigned char *flipped;
     unsigned int *patch_ids;
     float *confidence;
     meshfix_component *components;
+    meshfix_outputs arrays; /* what the call gets (outputs_null: NULL when nothing is wanted) */
     meshfix_report report;
     size_t flipped_len, patch_ids_len, confidence_len, components_len;
 } outputs;
@@ -1319,23 +1618,25 @@ static void prepare_outputs(const fuzz_case *fc, int dest_mode, outputs *out)
 {
     const settings *st = fc->st;
     size_t n = fc->index_count, t = fc->triangles, shift = (size_t)(st->dest_shift < 0 ? -st->dest_shift : st->dest_shift);
+    size_t z = fc->index_size;
     memset(out, 0, sizeof(*out));
     memset(&out->report, st->fill, sizeof(out->report));
+    out->index_size = fc->index_size;
     if (dest_mode == DEST_OVERLAP) {
         out->block_len = n + shift;
-        out->block = (unsigned int *)fill_alloc(out->block_len * sizeof(unsigned int), st->fill);
-        out->indices = out->block + (st->dest_shift < 0 ? shift : 0);
-        out->destination = out->block + (st->dest_shift < 0 ? 0 : shift);
+        out->block = (unsigned char *)fill_alloc(out->block_len * z, st->fill);
+        out->indices = out->block + (st->dest_shift < 0 ? shift : 0) * z;
+        out->destination = out->block + (st->dest_shift < 0 ? 0 : shift) * z;
     } else {
         out->block_len = n;
-        out->block = (unsigned int *)fill_alloc(n * sizeof(unsigned int), st->fill);
+        out->block = (unsigned char *)fill_alloc(n * z, st->fill);
         out->indices = out->block;
         if (dest_mode == DEST_IN_PLACE)
             out->destination = out->block;
         else if (dest_mode == DEST_SEPARATE)
-            out->destination = out->dest_extra = (unsigned int *)fill_alloc(n * sizeof(unsigned int), st->fill);
+            out->destination = out->dest_extra = (unsigned char *)fill_alloc(n * z, st->fill);
     }
-    memcpy(out->indices, fc->indices, n * sizeof(unsigned int));
+    memcpy(out->indices, fc->call_indices, n * z);
     if (st->want_flipped) {
         out->flipped_len = t + st->slack;
         out->flipped = (unsigned char *)fill_alloc(out->flipped_len, st->fill);
@@ -1354,14 +1655,20 @@ static void prepare_outputs(const fuzz_case *fc, int dest_mode, outputs *out)
     }
 }
 
-static void attach_outputs(const settings *st, outputs *out, meshfix_options *o)
+/* The meshfix_outputs the call gets; NULL (when the settings say so)
+   if no array is wanted. */
+static meshfix_outputs *attach_outputs(const settings *st, outputs *out)
 {
+    meshfix_outputs *o = &out->arrays;
     o->flipped = out->flipped;
     o->patch_ids = out->patch_ids;
     o->patch_confidence = out->confidence;
     o->patch_confidence_capacity = out->confidence ? st->confidence_capacity : 0;
     o->components = out->components;
     o->components_capacity = out->components ? st->components_capacity : 0;
+    if (st->outputs_null && !out->flipped && !out->patch_ids && !out->confidence && !out->components)
+        return NULL;
+    return o;
 }
 
 static void free_outputs(outputs *out)
@@ -1387,8 +1694,8 @@ static void take_snapshot(const outputs *out, snapshot *s)
 {
     const void *parts[6];
     size_t i;
-    parts[0] = out->block, s->sizes[0] = out->block_len * sizeof(unsigned int);
-    parts[1] = out->dest_extra, s->sizes[1] = out->dest_extra ? out->block_len * sizeof(unsigned int) : 0;
+    parts[0] = out->block, s->sizes[0] = out->block_len * out->index_size;
+    parts[1] = out->dest_extra, s->sizes[1] = out->dest_extra ? out->block_len * out->index_size : 0;
     parts[2] = out->flipped, s->sizes[2] = out->flipped_len;
     parts[3] = out->patch_ids, s->sizes[3] = out->patch_ids_len * sizeof(unsigned int);
     parts[4] = out->confidence, s->sizes[4] = out->confidence_len * sizeof(float);
@@ -1456,7 +1763,8 @@ static void do_run(const fuzz_case *fc, int is_orient, int dest_mode, int saniti
     char *scratch = NULL;
     size_t scratch_size = 0;
     float *positions_before = NULL;
-    const char *call = is_orient ? "meshfix_orient" : "meshfix_inspect_ex";
+    meshfix_outputs *arrays, arrays_before;
+    const char *call = is_orient ? "meshfix_orient" : "meshfix_inspect";
     memset(r, 0, sizeof(*r));
     r->is_orient = is_orient;
     r->had_report = want_report || !is_orient;
@@ -1479,11 +1787,11 @@ static void do_run(const fuzz_case *fc, int is_orient, int dest_mode, int saniti
         r->co.o.parallel_user = NULL;
     }
     if (st->scratch_mode != SCRATCH_NONE) {
-        /* sized for these options (the policy decides what the geometry needs) */
+        /* sized for these options (the policy and the formats decide what is needed) */
         size_t full = meshfix_scratch_size(fc->index_count, fc->vertex_count, &r->co.o);
-        size_t topology = topology_scratch(fc->index_count, fc->vertex_count);
+        size_t topology = topology_scratch(fc, fc->index_count, fc->vertex_count);
         size_t reached = (size_t)fc->max_index < fc->vertex_count
-                             ? topology_scratch(fc->index_count, (size_t)fc->max_index + 1)
+                             ? topology_scratch(fc, fc->index_count, (size_t)fc->max_index + 1)
                              : topology;
         if (st->scratch_mode == SCRATCH_SHORT)
             scratch_size = reached > st->scratch_shortfall ? reached - st->scratch_shortfall : 0;
@@ -1496,29 +1804,31 @@ static void do_run(const fuzz_case *fc, int is_orient, int dest_mode, int saniti
         scratch = (char *)scratch_raw + st->scratch_misalign;
         if (!STRESS_MSAN)
             memset(scratch_raw, r->count.garbage, scratch_size + st->scratch_misalign + 1);
-        r->co.o.scratch = scratch;
-        r->co.o.scratch_size = scratch_size;
+        r->co.o.memory.scratch = scratch;
+        r->co.o.memory.scratch_size = scratch_size;
         /* inspect needs no geometry: the topology is all it takes */
         r->co.scratch_full = fc->index_count != 0 && scratch_size >= (is_orient ? full : topology);
     }
     prepare_outputs(fc, dest_mode, &r->out);
-    attach_outputs(st, &r->out, &r->co.o);
+    arrays = attach_outputs(st, &r->out);
+    arrays_before = r->out.arrays;
     take_snapshot(&r->out, &snap);
     report_before = r->out.report;
     if (fc->positions)
         positions_before = (float *)duplicate(fc->positions, fc->positions_bytes);
     if (is_orient)
         r->result = meshfix_orient(r->out.destination, r->out.indices, fc->index_count, fc->positions,
-                                   fc->vertex_count, fc->stride, &r->co.o, want_report ? &r->out.report : NULL);
+                                   fc->vertex_count, fc->stride, &r->co.o, want_report ? &r->out.report : NULL, arrays);
     else
-        r->result = meshfix_inspect_ex(r->out.indices, fc->index_count, fc->positions, fc->vertex_count, fc->stride,
-                                       &r->co.o, &r->out.report);
+        r->result = meshfix_inspect(r->out.indices, fc->index_count, fc->positions, fc->vertex_count, fc->stride,
+                                    &r->co.o, &r->out.report, arrays);
     check_result(r->result, expect_run(fc, &r->co, &r->count, is_orient), call);
     REQUIRE(r->count.live_blocks == 0, "allocator blocks leaked");
     REQUIRE(positions_before == NULL || memcmp(positions_before, fc->positions, fc->positions_bytes) == 0,
             "positions written");
+    REQUIRE(memcmp(&arrays_before, &r->out.arrays, sizeof(arrays_before)) == 0, "the meshfix_outputs struct written");
     if (r->out.destination != r->out.indices && !(dest_mode == DEST_OVERLAP && r->result == MESHFIX_OK))
-        REQUIRE(memcmp(r->out.indices, fc->indices, fc->index_count * sizeof(unsigned int)) == 0,
+        REQUIRE(memcmp(r->out.indices, fc->call_indices, fc->index_count * fc->index_size) == 0,
                 "indices written though destination is elsewhere");
     if (r->result != MESHFIX_OK) {
         check_untouched(&r->out, &snap, &report_before, call);
@@ -1527,9 +1837,9 @@ static void do_run(const fuzz_case *fc, int is_orient, int dest_mode, int saniti
     } else if (!is_orient) {
         /* inspect ignores flipped and writes no confidence */
         REQUIRE(r->out.flipped == NULL || memcmp(r->out.flipped, snap.parts[2], snap.sizes[2]) == 0,
-                "meshfix_inspect_ex wrote flipped");
+                "meshfix_inspect wrote flipped");
         REQUIRE(r->out.confidence == NULL || memcmp(r->out.confidence, snap.parts[4], snap.sizes[4]) == 0,
-                "meshfix_inspect_ex wrote patch_confidence");
+                "meshfix_inspect wrote patch_confidence");
     }
     /* documented: at least meshfix_scratch_size() bytes of scratch, no allocation */
     if (r->co.scratch_full)
@@ -1546,11 +1856,6 @@ static void free_run(run *r)
 
 /* ===== checks of a successful call ===== */
 
-static int is_degenerate(const unsigned int *t)
-{
-    return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-}
-
 /* Each triangle as given or as (a, c, b); flipped flags and the count
    agree; degenerate triangles stay. Returns the output triangles in
    `result` (from the destination, or rebuilt from the flags). */
@@ -1563,7 +1868,10 @@ static int check_orient_output(const fuzz_case *fc, const run *r, unsigned int *
         const unsigned int *in = &fc->indices[3 * t];
         int flipped = -1;
         if (out->destination != NULL) {
-            const unsigned int *o = &out->destination[3 * t];
+            unsigned int o[3];
+            int k;
+            for (k = 0; k < 3; ++k)
+                o[k] = index_at(out->destination, fc->index_size, 3 * t + (size_t)k);
             REQUIRE(o[0] == in[0] && ((o[1] == in[1] && o[2] == in[2]) || (o[1] == in[2] && o[2] == in[1])),
                     "output triangle is neither the input nor its (a, c, b) reversal");
             flipped = !(o[1] == in[1] && o[2] == in[2]);
@@ -1574,7 +1882,7 @@ static int check_orient_output(const fuzz_case *fc, const run *r, unsigned int *
             flipped = out->flipped[t];
         }
         if (flipped > 0)
-            REQUIRE(!is_degenerate(in), "degenerate triangle flipped");
+            REQUIRE(!fc->degenerate_at[t], "degenerate triangle flipped (a vertex repeats after the topology)");
         flips += flipped > 0;
         if (result != NULL) {
             result[3 * t] = in[0];
@@ -1588,13 +1896,14 @@ static int check_orient_output(const fuzz_case *fc, const run *r, unsigned int *
 }
 
 /* Outputs after their size or capacity stay as they were; patch ids and
-   confidences and components make sense. */
+   confidences and components make sense; the doubtful and flipped
+   patches of the report are the ones the outputs show. */
 static void check_side_outputs(const fuzz_case *fc, const run *r)
 {
     const settings *st = fc->st;
     const outputs *out = &r->out;
     const meshfix_report *rep = &r->out.report;
-    size_t t, i, patches = r->had_report ? rep->patches : (size_t)-1;
+    size_t t, i, patches = r->had_report ? rep->mesh.patches : (size_t)-1;
     unsigned char fill[sizeof(meshfix_component)];
     memset(fill, st->fill, sizeof(fill));
     for (t = fc->triangles; t < out->flipped_len; ++t)
@@ -1603,9 +1912,10 @@ static void check_side_outputs(const fuzz_case *fc, const run *r)
         REQUIRE(memcmp(&out->patch_ids[t], fill, 4) == 0, "patch_ids written past index_count / 3");
     if (out->patch_ids != NULL)
         for (t = 0; t < fc->triangles; ++t) {
-            int degenerate = is_degenerate(&fc->indices[3 * t]);
-            REQUIRE(degenerate == (out->patch_ids[t] == 0xFFFFFFFFu), "patch id 0xFFFFFFFF is not exactly the degenerate triangles");
-            REQUIRE(degenerate || out->patch_ids[t] < patches, "patch id not below report.patches");
+            int degenerate = fc->degenerate_at[t];
+            REQUIRE(degenerate == (out->patch_ids[t] == 0xFFFFFFFFu),
+                    "patch id 0xFFFFFFFF is not exactly the degenerate triangles (after the topology)");
+            REQUIRE(degenerate || out->patch_ids[t] < patches, "patch id not below report.mesh.patches");
         }
     for (i = 0; i < out->confidence_len; ++i) {
         int written = i < st->confidence_capacity && i < patches && r->is_orient;
@@ -1614,11 +1924,40 @@ static void check_side_outputs(const fuzz_case *fc, const run *r)
         else if (written && r->had_report)
             REQUIRE(out->confidence[i] >= 0.0f && out->confidence[i] <= 1.0f, "patch_confidence outside [0, 1] or NaN");
     }
-#ifdef STRESS_TOLERATE_COMPONENTS
-    if (0)
-#endif
+    if (r->is_orient && r->had_report && out->patch_ids != NULL && patches <= MAX_TRIANGLES) {
+        /* report.patches_flipped: the patches holding a flipped triangle;
+           patches_doubtful and triangles_doubtful: the patches whose
+           confidence is below max(0.5, min_confidence) */
+        static unsigned char flipped_patch[MAX_TRIANGLES], doubtful[MAX_TRIANGLES];
+        size_t count = 0, doubtful_triangles = 0;
+        int confidences = out->confidence != NULL && st->confidence_capacity >= patches;
+        double threshold = r->co.o.evidence.min_confidence > 0.5f ? (double)r->co.o.evidence.min_confidence : 0.5;
+        memset(flipped_patch, 0, patches);
+        for (i = 0; i < patches; ++i)
+            doubtful[i] = confidences && (double)out->confidence[i] < threshold;
+        for (t = 0; t < fc->triangles; ++t) {
+            unsigned int p = out->patch_ids[t];
+            if (p == 0xFFFFFFFFu)
+                continue;
+            if (out->flipped != NULL && out->flipped[t])
+                flipped_patch[p] = 1;
+            doubtful_triangles += doubtful[p];
+        }
+        if (out->flipped != NULL) {
+            for (i = 0; i < patches; ++i)
+                count += flipped_patch[i];
+            REQUIRE(rep->patches_flipped == count, "report.patches_flipped is not the patches with a flipped triangle");
+        }
+        if (confidences) {
+            for (i = 0, count = 0; i < patches; ++i)
+                count += doubtful[i];
+            REQUIRE(rep->patches_doubtful == count,
+                    "report.patches_doubtful is not the patches with confidence below max(0.5, min_confidence)");
+            REQUIRE(rep->triangles_doubtful == doubtful_triangles, "report.triangles_doubtful is not their triangles");
+        }
+    }
     if (out->components != NULL && r->had_report) {
-        size_t n = rep->components < st->components_capacity ? rep->components : st->components_capacity;
+        size_t n = rep->mesh.components < st->components_capacity ? rep->mesh.components : st->components_capacity;
         size_t sum_triangles = 0, sum_edges = 0, sum_patches = 0, previous = 0;
         long sum_euler = 0;
         for (i = n; i < out->components_len; ++i)
@@ -1635,44 +1974,212 @@ static void check_side_outputs(const fuzz_case *fc, const run *r)
             sum_triangles += c->triangles, sum_edges += c->edges, sum_patches += c->patches;
             sum_euler += c->euler_characteristic;
         }
-        if (n == rep->components) {
-            REQUIRE(sum_triangles == rep->triangles - rep->triangles_degenerate, "component triangles do not add up");
-            REQUIRE(sum_edges == rep->edges, "component edges do not add up");
-            REQUIRE(sum_patches == rep->patches, "component patches do not add up");
-            REQUIRE(sum_euler == rep->euler_characteristic, "component Euler characteristics do not add up");
+        if (n == rep->mesh.components) {
+            REQUIRE(sum_triangles == rep->mesh.triangles - rep->mesh.triangles_degenerate,
+                    "component triangles do not add up");
+            REQUIRE(sum_edges == rep->mesh.edges, "component edges do not add up");
+            REQUIRE(sum_patches == rep->mesh.patches, "component patches do not add up");
+            REQUIRE(sum_euler == rep->mesh.euler_characteristic, "component Euler characteristics do not add up");
         }
     }
 }
 
+/* ===== the edges, by definition ===== */
+
+/* Each non-degenerate triangle's half-edges on the vertices the topology
+   makes, sorted by edge: an edge is a boundary (1 triangle), manifold (2)
+   or non-manifold (3+); it is inconsistent when a direction is used
+   twice (an edge of 3+ triangles always is). */
+typedef struct half_edge {
+    unsigned int lo, hi, triangle, forward;
+} half_edge;
+
+typedef struct edge_facts {
+    half_edge *h;
+    size_t count; /* half-edges */
+    size_t edges, boundary, manifold, non_manifold, inconsistent;
+    size_t first_inconsistent, first_boundary, first_ring; /* lowest triangle on such an edge, or (size_t)-1 */
+} edge_facts;
+
+static int compare_half_edges(const void *pa, const void *pb)
+{
+    const half_edge *a = (const half_edge *)pa, *b = (const half_edge *)pb;
+    if (a->lo != b->lo)
+        return a->lo < b->lo ? -1 : 1;
+    if (a->hi != b->hi)
+        return a->hi < b->hi ? -1 : 1;
+    return a->triangle < b->triangle ? -1 : a->triangle > b->triangle;
+}
+
+/* 0 boundary, 1 manifold and consistent, 2 manifold and inconsistent, 3 non-manifold; -1 not an edge */
+static int edge_kind(const edge_facts *e, unsigned int a, unsigned int b, size_t *first, size_t *size)
+{
+    half_edge key;
+    size_t lo = 0, hi = e->count;
+    key.lo = a < b ? a : b, key.hi = a < b ? b : a, key.triangle = 0, key.forward = 0;
+    while (lo < hi) { /* the first half-edge of the edge */
+        size_t mid = lo + (hi - lo) / 2;
+        const half_edge *m = &e->h[mid];
+        if (m->lo < key.lo || (m->lo == key.lo && m->hi < key.hi))
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    *first = lo;
+    for (*size = 0; lo + *size < e->count && e->h[lo + *size].lo == key.lo && e->h[lo + *size].hi == key.hi;)
+        ++*size;
+    if (*size == 0)
+        return -1;
+    if (*size == 1)
+        return 0;
+    if (*size == 2)
+        return e->h[lo].forward == e->h[lo + 1].forward ? 2 : 1;
+    return 3;
+}
+
+static void edge_facts_of(const fuzz_case *fc, const unsigned int *indices, edge_facts *e)
+{
+    size_t t, i, j;
+    memset(e, 0, sizeof(*e));
+    e->first_inconsistent = e->first_boundary = e->first_ring = (size_t)-1;
+    e->h = (half_edge *)malloc((3 * fc->triangles + 1) * sizeof(half_edge));
+    REQUIRE(e->h != NULL, "harness out of memory");
+    for (t = 0; t < fc->triangles; ++t) {
+        int k;
+        if (fc->degenerate_at[t])
+            continue;
+        for (k = 0; k < 3; ++k) {
+            unsigned int a = fc->rep[indices[3 * t + (size_t)k]], b = fc->rep[indices[3 * t + (size_t)(k + 1) % 3]];
+            half_edge *h = &e->h[e->count++];
+            h->lo = a < b ? a : b, h->hi = a < b ? b : a;
+            h->triangle = (unsigned int)t, h->forward = a < b;
+        }
+    }
+    qsort(e->h, e->count, sizeof(half_edge), compare_half_edges);
+    for (i = 0; i < e->count; i = j) {
+        size_t size, first, lowest = e->h[i].triangle; /* sorted by triangle within the edge */
+        int kind;
+        for (j = i; j < e->count && e->h[j].lo == e->h[i].lo && e->h[j].hi == e->h[i].hi;)
+            ++j;
+        kind = edge_kind(e, e->h[i].lo, e->h[i].hi, &first, &size);
+        e->edges++;
+        e->boundary += kind == 0;
+        e->manifold += kind == 1 || kind == 2;
+        e->non_manifold += kind == 3;
+        if (kind >= 2) {
+            e->inconsistent++;
+            e->first_inconsistent = lowest < e->first_inconsistent ? lowest : e->first_inconsistent;
+        }
+        if (kind == 0)
+            e->first_boundary = lowest < e->first_boundary ? lowest : e->first_boundary;
+        if (kind == 3)
+            e->first_ring = lowest < e->first_ring ? lowest : e->first_ring;
+    }
+}
+
+/* The mesh facts that count edges and triangles, against the definition. */
+static void check_edge_facts(const fuzz_case *fc, const meshfix_mesh_facts *k, const edge_facts *e, int inconsistent)
+{
+    REQUIRE(k->triangles_degenerate == fc->degenerate, "report.mesh.triangles_degenerate (after the topology)");
+    REQUIRE(k->edges == e->edges, "report.mesh.edges is not the number of distinct edges");
+    REQUIRE(k->edges_boundary == e->boundary, "report.mesh.edges_boundary");
+    REQUIRE(k->edges_manifold == e->manifold, "report.mesh.edges_manifold");
+    REQUIRE(k->edges_non_manifold == e->non_manifold, "report.mesh.edges_non_manifold");
+    if (inconsistent)
+        REQUIRE(k->edges_inconsistent == e->inconsistent, "report.mesh.edges_inconsistent");
+}
+
 static void check_report_sane(const fuzz_case *fc, const meshfix_report *rep)
 {
-    REQUIRE(rep->triangles == fc->triangles, "report.triangles");
-    REQUIRE(rep->triangles_degenerate == fc->degenerate, "report.triangles_degenerate");
-    REQUIRE(rep->edges == rep->edges_boundary + rep->edges_manifold + rep->edges_non_manifold, "edge counts");
-    REQUIRE(rep->edges_inconsistent <= rep->edges && rep->edges_inconsistent_input <= rep->edges, "inconsistent > edges");
-    REQUIRE(rep->vertices_used <= fc->vertex_count && rep->vertices_non_finite <= rep->vertices_used, "vertex counts");
-    REQUIRE(rep->patches <= rep->triangles - rep->triangles_degenerate && rep->components <= rep->patches, "patch counts");
-    REQUIRE(rep->patches_closed <= rep->patches && rep->components_closed <= rep->components, "closed counts");
-    REQUIRE(rep->triangles_zero_area <= rep->triangles - rep->triangles_degenerate, "zero-area count");
-    REQUIRE(rep->patches_doubtful <= rep->patches && rep->triangles_doubtful <= rep->triangles, "doubtful counts");
+    const meshfix_mesh_facts *k = &rep->mesh;
+    REQUIRE(k->triangles == fc->triangles, "report.mesh.triangles");
+    REQUIRE(k->triangles_degenerate == fc->degenerate, "report.mesh.triangles_degenerate");
+    REQUIRE(k->vertices_joined == fc->joined, "report.mesh.vertices_joined is not the used indices joined to a lower one");
+    REQUIRE(k->edges == k->edges_boundary + k->edges_manifold + k->edges_non_manifold, "edge counts");
+    REQUIRE(k->edges_inconsistent <= k->edges && rep->edges_inconsistent_before <= k->edges, "inconsistent > edges");
+    REQUIRE(k->vertices_used <= fc->vertex_count && k->vertices_non_finite <= k->vertices_used, "vertex counts");
+    REQUIRE(k->patches <= k->triangles - k->triangles_degenerate && k->components <= k->patches, "patch counts");
+    REQUIRE(k->patches_closed <= k->patches && k->components_closed <= k->components &&
+                k->components_non_orientable <= k->components && k->patches_inside_out <= k->patches_closed,
+            "closed counts");
+    REQUIRE(k->triangles_zero_area <= k->triangles - k->triangles_degenerate, "zero-area count");
+    REQUIRE(rep->patches_doubtful <= k->patches && rep->triangles_doubtful <= k->triangles, "doubtful counts");
+    REQUIRE(rep->patches_flipped <= k->patches && rep->patches_flipped <= rep->triangles_flipped &&
+                (rep->patches_flipped == 0) == (rep->triangles_flipped == 0),
+            "report.patches_flipped against triangles_flipped and patches");
+    REQUIRE(rep->area_doubtful >= 0.0 && (fc->positions != NULL || rep->area_doubtful == 0.0) &&
+                (rep->patches_doubtful != 0 || rep->area_doubtful == 0.0),
+            "report.area_doubtful");
+    REQUIRE(k->area >= 0.0 && (fc->positions != NULL || (k->area == 0.0 && k->signed_volume == 0.0)),
+            "report.mesh.area");
+}
+
+/* report.verdict, from the counts as the header defines it. */
+static void check_verdict(const meshfix_report *rep, int is_orient)
+{
+    const meshfix_mesh_facts *k = &rep->mesh;
+    meshfix_verdict expected;
+    if (k->components_non_orientable != 0)
+        expected = MESHFIX_VERDICT_NOT_ORIENTABLE;
+    else if (!is_orient)
+        expected = k->edges_inconsistent != 0   ? MESHFIX_VERDICT_INCONSISTENT
+                   : k->patches_inside_out != 0 ? MESHFIX_VERDICT_INSIDE_OUT
+                                                : MESHFIX_VERDICT_CLEAN;
+    else
+        expected = rep->patches_doubtful != 0    ? MESHFIX_VERDICT_DOUBTFUL
+                   : rep->triangles_flipped != 0 ? MESHFIX_VERDICT_REPAIRED
+                                                 : MESHFIX_VERDICT_CLEAN;
+    REQUIRE(rep->verdict == expected, is_orient ? "orient: report.verdict disagrees with the counts"
+                                                : "inspect: report.verdict disagrees with the counts");
+    REQUIRE(strcmp(meshfix_verdict_string(rep->verdict), "unknown verdict") != 0, "a verdict without a string");
+}
+
+/* meshfix_summary: the whole length whatever the buffer, terminated
+   within the buffer, nothing written past it, a prefix of the whole
+   line when cut. */
+static void check_summary(const settings *st, const meshfix_report *rep)
+{
+    char full[1024], cut[1024 + 16];
+    size_t length = meshfix_summary(rep, NULL, 0), size = st->summary_size, i, again;
+    REQUIRE(length > 0 && length < 512, "meshfix_summary: empty or absurdly long");
+    memset(full, 0x5A, sizeof(full));
+    REQUIRE(meshfix_summary(rep, full, sizeof(full)) == length, "meshfix_summary: length differs with the buffer");
+    REQUIRE(full[length] == '\0' && strlen(full) == length, "meshfix_summary: whole line not terminated at its length");
+    for (i = 0; i < length; ++i)
+        REQUIRE(full[i] >= 0x20 && full[i] < 0x7F, "meshfix_summary: not one line of printable text");
+    for (i = length + 1; i < sizeof(full); ++i)
+        REQUIRE(full[i] == 0x5A, "meshfix_summary wrote past the line");
+    memset(cut, 0xA5, sizeof(cut));
+    again = meshfix_summary(rep, size ? cut : (st->fill & 1 ? NULL : cut), size);
+    REQUIRE(again == length, "meshfix_summary: returned length is not the whole length when cut");
+    for (i = size; i < sizeof(cut); ++i)
+        REQUIRE((unsigned char)cut[i] == 0xA5, "meshfix_summary wrote past the buffer size");
+    if (size != 0) {
+        size_t kept = length < size - 1 ? length : size - 1;
+        REQUIRE(cut[kept] == '\0', "meshfix_summary: cut line not terminated within the buffer");
+        REQUIRE(memcmp(cut, full, kept) == 0, "meshfix_summary: cut line is not a prefix of the whole");
+    }
 }
 
 /* orient: every patch is decided by exactly one kind of evidence, or kept */
 static void check_report_decisions(const meshfix_report *rep)
 {
-    REQUIRE(rep->patches_by_volume + rep->patches_by_parity + rep->patches_by_visibility + rep->patches_by_normals +
-                    rep->patches_kept ==
-                rep->patches,
-            "report.patches_by_* and patches_kept do not add up to report.patches");
+    const meshfix_evidence_counts *e = &rep->evidence;
+    REQUIRE(e->patches_by_volume + e->patches_by_parity + e->patches_by_visibility + e->patches_by_normals +
+                    e->patches_kept ==
+                rep->mesh.patches,
+            "report.evidence.patches_by_* and patches_kept do not add up to report.mesh.patches");
 }
 
 /* The counts that depend on topology alone are the same for a mesh and
    any rewinding of it. */
-static void check_same_topology(const meshfix_report *a, const meshfix_report *b, const char *what)
+static void check_same_topology(const meshfix_report *ra, const meshfix_report *rb, const char *what)
 {
+    const meshfix_mesh_facts *a = &ra->mesh, *b = &rb->mesh;
     int same = a->triangles == b->triangles && a->triangles_degenerate == b->triangles_degenerate &&
                a->triangles_zero_area == b->triangles_zero_area && a->triangles_duplicate == b->triangles_duplicate &&
-               a->vertices_used == b->vertices_used && a->vertices_non_finite == b->vertices_non_finite &&
+               a->vertices_used == b->vertices_used && a->vertices_joined == b->vertices_joined &&
+               a->vertices_non_finite == b->vertices_non_finite &&
                a->vertices_non_manifold == b->vertices_non_manifold && a->edges == b->edges &&
                a->edges_boundary == b->edges_boundary && a->edges_manifold == b->edges_manifold &&
                a->edges_non_manifold == b->edges_non_manifold && a->patches == b->patches &&
@@ -1683,16 +2190,21 @@ static void check_same_topology(const meshfix_report *a, const meshfix_report *b
     REQUIRE(same, what);
 }
 
-/* Two runs of the same call: bit-identical results and outputs. */
+/* Two runs of the same call: bit-identical results and outputs. The
+   destinations are compared as index values (the runs may differ in
+   index_size). */
 static void check_identical(const fuzz_case *fc, const run *a, const run *b, const char *what)
 {
+    size_t i;
     REQUIRE(a->result == b->result, what);
     if (a->result != MESHFIX_OK)
         return;
     REQUIRE(memcmp(&a->out.report, &b->out.report, sizeof(a->out.report)) == 0, what);
-    REQUIRE(a->out.destination == NULL ||
-                memcmp(a->out.destination, b->out.destination, fc->index_count * sizeof(unsigned int)) == 0,
-            what);
+    if (a->out.destination != NULL)
+        for (i = 0; i < fc->index_count; ++i)
+            REQUIRE(index_at(a->out.destination, a->out.index_size, i) ==
+                        index_at(b->out.destination, b->out.index_size, i),
+                    what);
     REQUIRE(a->out.flipped == NULL || memcmp(a->out.flipped, b->out.flipped, a->out.flipped_len) == 0, what);
     REQUIRE(a->out.patch_ids == NULL ||
                 memcmp(a->out.patch_ids, b->out.patch_ids, a->out.patch_ids_len * sizeof(unsigned int)) == 0,
@@ -1707,56 +2219,169 @@ static void check_identical(const fuzz_case *fc, const run *a, const run *b, con
 
 /* ===== the other entry points ===== */
 
+/* The case's formats alone (valid): what inspect and check get. */
+static meshfix_options format_options(const fuzz_case *fc)
+{
+    meshfix_options o;
+    memset(&o, 0, sizeof(o));
+    set_formats(fc, 0, &o);
+    return o;
+}
+
 static meshfix_report inspect_plain(const fuzz_case *fc, const unsigned int *indices, meshfix_result *result)
 {
     meshfix_report rep;
+    meshfix_options o = format_options(fc);
+    void *call_indices = encode_indices(indices, fc->index_count, fc->index_size);
     memset(&rep, 0, sizeof(rep));
-    *result = meshfix_inspect(indices, fc->index_count, fc->positions, fc->vertex_count, fc->stride, &rep);
+    *result = meshfix_inspect(call_indices, fc->index_count, fc->positions, fc->vertex_count, fc->stride, &o, &rep,
+                              NULL);
+    free(call_indices);
     return rep;
 }
 
-/* meshfix_check is documented as inspect plus the requirement bits. */
+static int text_terminated(const char *text, size_t size)
+{
+    return memchr(text, '\0', size) != NULL;
+}
+
+static int starts_with(const char *text, const char *prefix)
+{
+    return strncmp(text, prefix, strlen(prefix)) == 0;
+}
+
+/* ends (vertex ids after the topology) are two distinct corners of triangle t */
+static int edge_of_triangle(const fuzz_case *fc, size_t t, const unsigned int ends[2])
+{
+    int i, j;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j)
+            if (i != j && fc->rep[fc->indices[3 * t + (size_t)i]] == ends[0] &&
+                fc->rep[fc->indices[3 * t + (size_t)j]] == ends[1])
+                return 1;
+    return 0;
+}
+
+/* meshfix_check is documented as inspect plus the requirement bits, and
+   its failure as the first requirement that fails (in the order of the
+   bits), the lowest triangle and an edge that fail it, the count, and a
+   line of text within its array. */
 static void check_check(const fuzz_case *fc)
 {
-    unsigned int req = fc->st->requirements, effective = req ? req : MESHFIX_REQUIRE_CONSISTENT;
+    static const unsigned int order[5] = {MESHFIX_REQUIRE_CONSISTENT, MESHFIX_REQUIRE_CLOSED, MESHFIX_REQUIRE_MANIFOLD,
+                                          MESHFIX_REQUIRE_OUTWARD, MESHFIX_REQUIRE_NO_DEGENERATE};
+    static const char *const texts[5] = {"not consistent", "not closed", "not manifold", "not outward", "degenerate"};
+    unsigned int req = fc->st->requirements, effective = req ? req : MESHFIX_REQUIRE_CONSISTENT, failing = 0;
     meshfix_result result;
     meshfix_report rep = inspect_plain(fc, fc->indices, &result);
-    int expected = result == MESHFIX_OK;
-    if ((effective & (MESHFIX_REQUIRE_OUTWARD | MESHFIX_REQUIRE_NO_DEGENERATE)) && fc->positions == NULL)
-        expected = 0;
+    meshfix_options o = format_options(fc);
+    meshfix_check_failure why;
+    const meshfix_mesh_facts *k = &rep.mesh;
+    size_t count = 0;
+    int expected = result == MESHFIX_OK, got, i;
+    int needs_positions = (effective & (MESHFIX_REQUIRE_OUTWARD | MESHFIX_REQUIRE_NO_DEGENERATE)) && fc->positions == NULL;
+    if (needs_positions)
+        expected = 0, result = result == MESHFIX_OK ? MESHFIX_ERROR_POSITIONS_REQUIRED : result;
     if (expected) {
-        if ((effective & MESHFIX_REQUIRE_CONSISTENT) && rep.edges_inconsistent)
-            expected = 0;
-        if ((effective & MESHFIX_REQUIRE_CLOSED) && rep.edges_boundary)
-            expected = 0;
-        if ((effective & MESHFIX_REQUIRE_MANIFOLD) && rep.edges_non_manifold + rep.vertices_non_manifold)
-            expected = 0;
-        if ((effective & MESHFIX_REQUIRE_OUTWARD) && rep.patches_inside_out)
-            expected = 0;
-        if ((effective & MESHFIX_REQUIRE_NO_DEGENERATE) &&
-            rep.triangles_degenerate + rep.triangles_zero_area + rep.triangles_duplicate)
-            expected = 0;
+        for (i = 0; i < 5 && failing == 0; ++i) {
+            size_t n = 0;
+            if (!(effective & order[i]))
+                continue;
+            switch (i) {
+            case 0: n = k->edges_inconsistent; break;
+            case 1: n = k->edges_boundary; break;
+            case 2: n = k->edges_non_manifold + k->vertices_non_manifold; break;
+            case 3: n = k->patches_inside_out; break;
+            default: n = k->triangles_degenerate + k->triangles_zero_area + k->triangles_duplicate;
+            }
+            if (n != 0)
+                failing = order[i], count = n;
+        }
+        expected = failing == 0;
     }
-    REQUIRE(meshfix_check(fc->indices, fc->index_count, fc->positions, fc->vertex_count, fc->stride, req) == expected,
-            "meshfix_check disagrees with meshfix_inspect and the requirement bits");
+    memset(&why, 0xA5, sizeof(why));
+    got = meshfix_check(fc->call_indices, fc->index_count, fc->positions, fc->vertex_count, fc->stride, req, &o, &why);
+    REQUIRE(got == expected, "meshfix_check disagrees with meshfix_inspect and the requirement bits");
+    /* the same answer without a failure struct */
+    REQUIRE(meshfix_check(fc->call_indices, fc->index_count, fc->positions, fc->vertex_count, fc->stride, req, &o,
+                          NULL) == got,
+            "meshfix_check answers differently without a failure struct");
+    REQUIRE(text_terminated(why.text, sizeof(why.text)), "meshfix_check_failure.text not terminated within its array");
+    if (result != MESHFIX_OK) {
+        /* invalid input, or positions missing: either may be named first */
+        REQUIRE(why.result == result || (needs_positions && why.result == MESHFIX_ERROR_POSITIONS_REQUIRED),
+                "meshfix_check_failure.result is not what inspect returned");
+        REQUIRE(why.requirement == 0 && why.triangle == (size_t)-1 && why.edge[0] == 0xFFFFFFFFu &&
+                    why.edge[1] == 0xFFFFFFFFu,
+                "meshfix_check_failure of invalid input names a requirement, triangle or edge");
+        REQUIRE(starts_with(why.text, "not valid input"), "meshfix_check_failure.text of invalid input");
+        return;
+    }
+    REQUIRE(why.result == MESHFIX_OK, "meshfix_check_failure.result not OK for valid input");
+    if (failing == 0) {
+        REQUIRE(why.requirement == 0 && why.count == 0 && why.triangle == (size_t)-1,
+                "meshfix_check_failure names a failure where every requirement holds");
+        return;
+    }
+    REQUIRE(why.requirement == failing, "meshfix_check_failure.requirement is not the first failing bit");
+    REQUIRE(why.count == count, "meshfix_check_failure.count is not the report's count");
+    for (i = 0; i < 5; ++i)
+        if (order[i] == failing)
+            REQUIRE(starts_with(why.text, texts[i]), "meshfix_check_failure.text does not name the requirement");
+    REQUIRE(why.triangle < fc->triangles, "meshfix_check_failure.triangle: no triangle named for a failure");
+    REQUIRE((why.edge[0] == 0xFFFFFFFFu) == (why.edge[1] == 0xFFFFFFFFu), "meshfix_check_failure.edge: one end only");
+    if (why.edge[0] != 0xFFFFFFFFu) {
+        REQUIRE(why.edge[0] < why.edge[1] && why.edge[1] < fc->vertex_count,
+                "meshfix_check_failure.edge: not two ordered vertices");
+        REQUIRE(edge_of_triangle(fc, why.triangle, why.edge),
+                "meshfix_check_failure.edge is not an edge of meshfix_check_failure.triangle");
+    }
+    if (failing == MESHFIX_REQUIRE_CONSISTENT || failing == MESHFIX_REQUIRE_CLOSED ||
+        (failing == MESHFIX_REQUIRE_MANIFOLD && k->edges_non_manifold != 0)) {
+        edge_facts e;
+        size_t first, size, lowest;
+        int kind;
+        edge_facts_of(fc, fc->indices, &e);
+        REQUIRE(why.edge[0] != 0xFFFFFFFFu, "meshfix_check_failure: no edge named for an edge requirement");
+        kind = edge_kind(&e, why.edge[0], why.edge[1], &first, &size);
+        lowest = failing == MESHFIX_REQUIRE_CONSISTENT ? e.first_inconsistent
+                 : failing == MESHFIX_REQUIRE_CLOSED   ? e.first_boundary
+                                                       : e.first_ring;
+        REQUIRE(failing == MESHFIX_REQUIRE_CONSISTENT ? kind >= 2 : failing == MESHFIX_REQUIRE_CLOSED ? kind == 0 : kind == 3,
+                "meshfix_check_failure.edge does not fail the requirement");
+        REQUIRE(why.triangle == lowest, "meshfix_check_failure.triangle is not the lowest that fails the requirement");
+        free(e.h);
+    } else if (failing == MESHFIX_REQUIRE_NO_DEGENERATE) {
+        size_t t;
+        for (t = 0; t < fc->triangles && !fc->degenerate_at[t]; ++t) {
+        }
+        REQUIRE(why.triangle <= t, "meshfix_check_failure.triangle: a lower triangle repeats a vertex");
+    }
 }
 
-static double squared_distance(const float *p, const float *q)
+/* as meshfix_weld measures: in double, -0 as +0 */
+static double squared_distance(const double *p, const double *q)
 {
-    /* as meshfix_weld measures: in double, -0 as +0 */
-    double d0 = (double)(p[0] == 0.0f ? 0.0f : p[0]) - (double)(q[0] == 0.0f ? 0.0f : q[0]);
-    double d1 = (double)(p[1] == 0.0f ? 0.0f : p[1]) - (double)(q[1] == 0.0f ? 0.0f : q[1]);
-    double d2 = (double)(p[2] == 0.0f ? 0.0f : p[2]) - (double)(q[2] == 0.0f ? 0.0f : q[2]);
-    return d0 * d0 + d1 * d1 + d2 * d2;
+    double d = 0.0;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        double x = (p[k] == 0.0 ? 0.0 : p[k]) - (q[k] == 0.0 ? 0.0 : q[k]);
+        d += x * x;
+    }
+    return d;
 }
 
-static const float *vertex_at(const fuzz_case *fc, size_t v)
+static double vertex_distance(const fuzz_case *fc, size_t a, size_t b)
 {
-    return (const float *)(const void *)((const char *)fc->positions + v * fc->stride);
+    double p[3], q[3];
+    read_vertex(fc, a, p);
+    read_vertex(fc, b, q);
+    return squared_distance(p, q);
 }
 
 /* Weld: every vertex maps to the lowest representative within the
-   tolerance, representatives map to themselves and lie farther apart. */
+   tolerance, representatives map to themselves and lie farther apart.
+   Floats or doubles as the case has them. */
 static void check_weld(const fuzz_case *fc)
 {
     const settings *st = fc->st;
@@ -1772,23 +2397,27 @@ static void check_weld(const fuzz_case *fc)
         return;
     memset(&count, 0, sizeof(count));
     memset(&o, 0, sizeof(o));
+    /* the raw position_size: anything but 0, 4 and 8 is refused */
+    o.position_size = st->position_size;
     if (st->alloc_mode != ALLOC_DEFAULT) {
-        o.allocator.alloc_fn = counting_alloc;
-        o.allocator.free_fn = st->alloc_mode == ALLOC_NO_FREE ? NULL : counting_free;
-        o.allocator.user_data = &count;
+        o.memory.alloc_func = counting_alloc;
+        o.memory.free_func = st->alloc_mode == ALLOC_NO_FREE ? NULL : counting_free;
+        o.memory.user_data = &count;
         if (st->alloc_mode == ALLOC_FAILING)
             count.fail_at = st->fail_at, count.fail_persistent = st->fail_persistent;
     }
     remap = (unsigned int *)fill_alloc(n * sizeof(unsigned int), st->fill);
     if (n != 0) {
-        if (float_clearly_invalid(st->weld_tolerance) || !stride_valid(fc->stride))
+        int readable = stride_valid(fc->stride, fc->position_size) &&
+                       (st->position_size == 0 || st->position_size == 4 || st->position_size == 8);
+        if (float_clearly_invalid(st->weld_tolerance) || !readable)
             e.required |= BIT(MESHFIX_ERROR_INVALID_ARGUMENT);
-        if (o.allocator.alloc_fn != NULL && o.allocator.free_fn == NULL)
+        if (o.memory.alloc_func != NULL && o.memory.free_func == NULL)
             e.required |= BIT(MESHFIX_ERROR_INVALID_ARGUMENT);
-        if (stride_valid(fc->stride))
+        if (readable)
             for (v = 0; v < n; ++v) {
-                const float *p = vertex_at(fc, v);
-                if (!is_finite_bits(p[0]) || !is_finite_bits(p[1]) || !is_finite_bits(p[2]))
+                double p[3];
+                if (!read_vertex(fc, v, p))
                     e.required |= BIT(MESHFIX_ERROR_NON_FINITE);
             }
         if (count.fail_at != 0)
@@ -1801,12 +2430,14 @@ static void check_weld(const fuzz_case *fc)
         for (v = 0; v < n; ++v)
             REQUIRE(memcmp(&remap[v], &(uint32_t){0x01010101u * st->fill}, 4) == 0, "meshfix_weld failed but wrote remap");
         REQUIRE(unique == 12345, "meshfix_weld failed but wrote unique_count");
+        REQUIRE(result == MESHFIX_ERROR_OUT_OF_MEMORY || count.alloc_calls == 0,
+                "meshfix_weld refused the input after allocating");
         free(remap);
         return;
     }
     for (v = 0; v < n; ++v) {
         REQUIRE(remap[v] <= v && remap[remap[v]] == remap[v], "weld: remap is not to an earlier representative");
-        REQUIRE(squared_distance(vertex_at(fc, v), vertex_at(fc, remap[v])) <= t2, "weld: farther than the tolerance");
+        REQUIRE(vertex_distance(fc, v, remap[v]) <= t2, "weld: farther than the tolerance");
         reps += remap[v] == v;
     }
     REQUIRE(unique == reps, "weld: unique_count");
@@ -1817,7 +2448,7 @@ static void check_weld(const fuzz_case *fc)
         size_t x = n <= 512 ? checked : below(&g, (uint32_t)n), r;
         for (r = 0; r < remap[x]; ++r)
             if (remap[r] == r)
-                REQUIRE(squared_distance(vertex_at(fc, x), vertex_at(fc, r)) > t2,
+                REQUIRE(vertex_distance(fc, x, r) > t2,
                         "weld: a lower representative within the tolerance was passed over");
     }
     free(remap);
@@ -1865,11 +2496,31 @@ static void orient_flow(const fuzz_case *fc)
     do_run(fc, 1, st->dest_mode, 1, 1, 1, st->want_report, &main_run);
 
     /* the same call without parallel_for (and, if it failed on purpose, also
-       with the same failing allocation): bit-identical */
-    if (st->parallel_mode != PARALLEL_NONE) {
+       with the same failing allocation), fresh memory filled with other
+       garbage: bit-identical */
+    if (st->parallel_mode != PARALLEL_NONE || st->alloc_mode != ALLOC_DEFAULT || st->scratch_mode != SCRATCH_NONE) {
         do_run(fc, 1, st->dest_mode, 1, 0, 1, st->want_report, &reference);
-        check_identical(fc, &main_run, &reference, "result differs with parallel_for running chunks out of order");
+        check_identical(fc, &main_run, &reference,
+                        st->parallel_mode != PARALLEL_NONE
+                            ? "result differs with parallel_for running chunks out of order"
+                            : "result differs with other garbage in fresh memory");
         free_run(&reference);
+    }
+
+    /* 16-bit indices: the same call with the same indices in 32 bits gives
+       the same answer, bit for bit */
+    if (fc->index_size == 2) {
+        fuzz_case wide = *fc;
+        wide.index_size = 4;
+        wide.call_indices = encode_indices(fc->indices, fc->index_count, 4);
+        do_run(&wide, 1, st->dest_mode, 1, 1, 1, st->want_report, &reference);
+        if (main_run.result == MESHFIX_OK && st->scratch_mode != SCRATCH_SHORT && st->scratch_mode != SCRATCH_TOPOLOGY &&
+            st->alloc_mode != ALLOC_FAILING)
+            REQUIRE(reference.result == MESHFIX_OK, "refused with 32-bit indices what 16-bit ones passed");
+        if (main_run.result == MESHFIX_OK && reference.result == MESHFIX_OK)
+            check_identical(fc, &main_run, &reference, "result differs between 16-bit and 32-bit indices");
+        free_run(&reference);
+        free(wide.call_indices);
     }
     if (main_run.result != MESHFIX_OK) {
         free_run(&main_run);
@@ -1883,21 +2534,31 @@ static void orient_flow(const fuzz_case *fc)
     if (main_run.had_report) {
         meshfix_result in_result, out_result;
         meshfix_report before = inspect_plain(fc, fc->indices, &in_result), after;
-        check_report_sane(fc, &main_run.out.report);
-        check_report_decisions(&main_run.out.report);
+        const meshfix_report *rep = &main_run.out.report;
+        edge_facts e;
+        check_report_sane(fc, rep);
+        check_report_decisions(rep);
+        check_verdict(rep, 1);
+        check_summary(st, rep);
         REQUIRE(in_result == MESHFIX_OK, "meshfix_inspect refused what meshfix_orient accepted");
-        check_same_topology(&before, &main_run.out.report, "orient report topology differs from inspect of the input");
-        REQUIRE(before.edges_inconsistent == main_run.out.report.edges_inconsistent_input,
-                "report.edges_inconsistent_input differs from inspect of the input");
+        check_same_topology(&before, rep, "orient report topology differs from inspect of the input");
+        REQUIRE(before.mesh.edges_inconsistent == rep->edges_inconsistent_before,
+                "report.edges_inconsistent_before differs from inspect of the input");
+        edge_facts_of(fc, fc->indices, &e);
+        check_edge_facts(fc, &before.mesh, &e, 1);
+        free(e.h);
         if (known) {
             after = inspect_plain(fc, returned, &out_result);
             REQUIRE(out_result == MESHFIX_OK, "meshfix_inspect refused the output");
             check_same_topology(&before, &after, "inspect of the output differs in topology from the input");
-            REQUIRE(after.edges_inconsistent == main_run.out.report.edges_inconsistent,
-                    "report.edges_inconsistent is not what the returned mesh has");
+            REQUIRE(after.mesh.edges_inconsistent == rep->mesh.edges_inconsistent,
+                    "report.mesh.edges_inconsistent is not what the returned mesh has");
+            edge_facts_of(fc, returned, &e);
+            check_edge_facts(fc, &rep->mesh, &e, 1);
+            free(e.h);
         }
         if (main_run.co.policy == MESHFIX_POLICY_SDF)
-            REQUIRE(main_run.out.report.sdf_evaluations == main_run.count.sdf_calls, "report.sdf_evaluations");
+            REQUIRE(rep->evidence.sdf_evaluations == main_run.count.sdf_calls, "report.evidence.sdf_evaluations");
     }
 
     /* orient the output again under the same options: SEED and MAJORITY
@@ -1907,18 +2568,23 @@ static void orient_flow(const fuzz_case *fc)
         settings second = *st;
         run r2;
         second.alloc_mode = second.alloc_mode == ALLOC_FAILING ? ALLOC_COUNTING : second.alloc_mode;
+        size_t i;
         again.st = &second;
         again.indices = returned;
+        again.call_indices = encode_indices(returned, fc->index_count, fc->index_size);
         do_run(&again, 1, DEST_SEPARATE, 1, 1, 0, 1, &r2);
         REQUIRE(r2.result == MESHFIX_OK, "second orient of the output failed");
         if (main_run.co.policy == MESHFIX_POLICY_SEED || main_run.co.policy == MESHFIX_POLICY_MAJORITY) {
             REQUIRE(r2.out.report.triangles_flipped == 0, "orient is not idempotent (SEED / MAJORITY)");
-            REQUIRE(memcmp(r2.out.destination, returned, fc->index_count * sizeof(unsigned int)) == 0,
-                    "orient is not idempotent (SEED / MAJORITY): destination changed");
+            for (i = 0; i < fc->index_count; ++i)
+                REQUIRE(index_at(r2.out.destination, fc->index_size, i) == returned[i],
+                        "orient is not idempotent (SEED / MAJORITY): destination changed");
         } else {
             check_orient_output(&again, &r2, NULL);
         }
+        check_verdict(&r2.out.report, 1);
         free_run(&r2);
+        free(again.call_indices);
     }
     free(returned);
     free_run(&main_run);
@@ -1927,12 +2593,23 @@ static void orient_flow(const fuzz_case *fc)
 static void inspect_flow(const fuzz_case *fc)
 {
     run r;
+    meshfix_options o = format_options(fc);
     do_run(fc, 0, DEST_NULL, 1, 1, 1, 1, &r);
     if (r.result == MESHFIX_OK) {
+        edge_facts e;
         check_report_sane(fc, &r.out.report);
         check_side_outputs(fc, &r);
+        check_verdict(&r.out.report, 0);
+        check_summary(fc->st, &r.out.report);
+        edge_facts_of(fc, fc->indices, &e);
+        check_edge_facts(fc, &r.out.report.mesh, &e, 1);
+        free(e.h);
     }
     free_run(&r);
+    /* the report is required */
+    REQUIRE(meshfix_inspect(fc->call_indices, fc->index_count, fc->positions, fc->vertex_count, fc->stride, &o, NULL,
+                            NULL) == MESHFIX_ERROR_INVALID_ARGUMENT,
+            "meshfix_inspect without a report accepted");
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

@@ -93,6 +93,23 @@ typedef struct seed_settings {
                                     reversed face normals, random (NaN too), zero */
     unsigned int normal_strides; /* % 8 triangle, (>> 3) % 8 vertex, into {0,12,12,16,24,0,4,13} */
     uint64_t normals_seed;
+    /* the 0.2 formats */
+    unsigned int index_size;     /* % 4: 0 (default), 2 (16-bit, when the vertices fit), 4, raw_index_size */
+    uint32_t raw_index_size;
+    unsigned int position_size;  /* % 4: 0 (default), 8 (double), 4, raw_position_size */
+    uint32_t raw_position_size;
+    unsigned int topology;       /* < 240: % 3 POSITIONS, INDICES, WELD; else raw_topology */
+    uint32_t raw_topology;
+    option_float topology_tolerance;
+    unsigned int doubles;        /* % 4 offset: none, +-2^k, raw bits, c * 10^k; bit 2 jitter below float
+                                    precision; bit 3 scale by 2^(8 * (int8) exponent) */
+    unsigned int exponent;       /* bit 3 of doubles */
+    unsigned int offset_k, offset_c; /* offset 1: k (bit 7 sign, % 80); 3: c (int8), k % 16 */
+    uint64_t offset_bits;        /* offset 2 */
+    unsigned int double_stride;  /* index into {24,24,24,0,0,32,40,48,28,36,24,12,16,20,25,26} */
+    uint64_t double_seed;
+    unsigned int summary;        /* < 64: buffer of summary % 8 bytes; else that many */
+    unsigned int outputs_null;   /* bit 0: no output wanted, pass NULL */
 } seed_settings;
 
 static void put_option_float(buffer *b, option_float f)
@@ -161,6 +178,29 @@ static void put_settings(buffer *b, const seed_settings *s)
     put_u8(b, s->normals);
     put_u8(b, s->normal_strides);
     put_u64(b, s->normals_seed);
+    put_u8(b, s->index_size);
+    if (s->index_size % 4 == 3)
+        put_u32(b, s->raw_index_size);
+    put_u8(b, s->position_size);
+    if (s->position_size % 4 == 3)
+        put_u32(b, s->raw_position_size);
+    put_u8(b, s->topology);
+    if (s->topology >= 240)
+        put_u32(b, s->raw_topology);
+    put_option_float(b, s->topology_tolerance);
+    put_u8(b, s->doubles);
+    if (s->doubles & 8)
+        put_u8(b, s->exponent);
+    switch (s->doubles % 4) {
+    case 1: put_u8(b, s->offset_k); break;
+    case 2: put_u64(b, s->offset_bits); break;
+    case 3: put_u8(b, s->offset_c), put_u8(b, s->offset_k); break;
+    default: break;
+    }
+    put_u8(b, s->double_stride);
+    put_u64(b, s->double_seed);
+    put_u8(b, s->summary);
+    put_u8(b, s->outputs_null);
 }
 
 /* Defaults: every output with room, a report, the second orient, sdf
@@ -177,6 +217,7 @@ static seed_settings defaults(unsigned int policy)
     s.components_capacity = 64;
     s.fill = 0xA5;
     s.sdf = 0x00;
+    s.summary = 200; /* room for the whole line */
     return s;
 }
 
@@ -589,6 +630,92 @@ int main(int argc, char **argv)
     op_soup(&b, 80, ENCODINGS(E_SMALL_INT, E_SMALL_INT, E_SMALL_INT), 48);
     op_random_triangles(&b, 150, 30, 0, 49);
     write_seed("normals_per_vertex_noise", &b);
+
+    /* ---- the 0.2 formats ---- */
+
+    /* 16-bit indices: shells and a sheet under AUTO, destination
+       overlapping the indices, chunks in reverse; a raw index 0x10002
+       that 16 bits hold as 2 */
+    memset(&b, 0, sizeof(b)), s = defaults(AUTO), s.index_size = 1, s.parallel = 1, s.dest = 3, s.dest_shift = 4;
+    put_settings(&b, &s);
+    op_shells(&b, 6, 2 | 4, 40, 1 | 8, 0, 3, 60);
+    op_grid(&b, 12, 10, 60, 8 | E_FIXED, 2, 61);
+    op_triangle_raw(&b, 0, 1, 0x10002u);
+    write_seed("indices16_shells", &b);
+    memset(&b, 0, sizeof(b)), s = defaults(SEED), s.index_size = 1, s.topology = 1, s.requirements = 31;
+    put_settings(&b, &s);
+    op_hypergraph(&b, 14, 0x80, ENCODINGS(E_SMALL_INT, E_SMALL_INT, E_SMALL_INT), 62);
+    op_duplicates(&b, 60, 63);
+    write_seed("indices16_hypergraph", &b);
+
+    /* doubles 2^40 away from the origin, bits below float precision,
+       28-byte stride (doubles on 4-byte boundaries): nested shells */
+    memset(&b, 0, sizeof(b)), s = defaults(AUTO), s.position_size = 1, s.doubles = 1 | 4, s.offset_k = 40;
+    s.double_stride = 8, s.double_seed = 64, s.parallel = 2, s.shuffle_seed = 9;
+    put_settings(&b, &s);
+    op_shells(&b, 12, 2 | 4, 30, 0, 0, 0, 65);
+    op_shells(&b, 6, 1, 30, 1 | 8, 20, 3, 66);
+    write_seed("doubles_far", &b);
+
+    /* survey coordinates (4.5e6), welded within a tolerance as the
+       topology and by meshfix_weld, corners repeating earlier ones */
+    memset(&b, 0, sizeof(b)), s = defaults(MAJORITY), s.position_size = 1, s.doubles = 3, s.offset_c = 45;
+    s.offset_k = 5, s.topology = 2, s.topology_tolerance = of(F_SMALL, 10), s.weld_tolerance = of(F_SMALL, 10);
+    s.requirements = 31, s.alloc = 1;
+    put_settings(&b, &s);
+    op_soup(&b, 100, ENCODINGS(E_FIXED, E_FIXED, E_FIXED), 67);
+    op_soup(&b, 200, ENCODINGS(E_REPEAT, E_REPEAT, E_REPEAT), 68);
+    write_seed("doubles_survey_weld", &b);
+
+    /* doubles scaled by 2^160 and 2^-160: beyond float range both ways,
+       under VISIBILITY, packed (stride 0) */
+    memset(&b, 0, sizeof(b)), s = defaults(VISIBILITY), s.position_size = 1, s.doubles = 8, s.exponent = 20;
+    s.double_stride = 3;
+    put_settings(&b, &s);
+    op_shells(&b, 4, 2, 60, 0, 0, 0, 69);
+    op_grid(&b, 10, 10, 60, 8 | E_SMALL_INT, 0, 70);
+    write_seed("doubles_beyond_float", &b);
+    memset(&b, 0, sizeof(b)), s = defaults(OUTWARD), s.position_size = 1, s.doubles = 8 | 2, s.exponent = 0xEC;
+    s.offset_bits = 0x3FF0000000000001ull, s.scratch = 1, s.alloc = 1;
+    put_settings(&b, &s);
+    op_shells(&b, 5, 0, 60, 4, 0, 0, 71);
+    write_seed("doubles_tiny_scratch", &b);
+
+    /* an engine's vertex buffer split at seams: corners repeating earlier
+       positions exactly (joined by default), by index on request */
+    memset(&b, 0, sizeof(b)), s = defaults(AUTO), s.requirements = 31, s.summary = 1;
+    put_settings(&b, &s);
+    op_shells(&b, 3, 2, 0, 1 | 8, 0, 4, 72);
+    op_soup(&b, 120, ENCODINGS(E_REPEAT, E_REPEAT, E_REPEAT), 73);
+    write_seed("topology_positions_seams", &b);
+    memset(&b, 0, sizeof(b)), s = defaults(MAJORITY), s.topology = 1, s.requirements = 2 | 4, s.summary = 0;
+    put_settings(&b, &s);
+    op_grid(&b, 8, 8, 90, 0, 1, 74);
+    op_stack(&b, 20, 0, 128, 75);
+    write_seed("topology_indices", &b);
+    memset(&b, 0, sizeof(b)), s = defaults(OUTWARD), s.topology = 2, s.topology_tolerance = of(F_FRACTION, 3);
+    s.requirements = 1 | 16, s.summary = 5;
+    put_settings(&b, &s);
+    op_soup(&b, 200, ENCODINGS(E_FIXED, E_FIXED, E_FIXED), 76);
+    op_stack(&b, 30, 1, 128, 77);
+    write_seed("topology_weld", &b);
+
+    /* formats nobody can read: 3-byte indices, 12-byte coordinates, topology 7 */
+    memset(&b, 0, sizeof(b)), s = defaults(SEED), s.index_size = 3, s.raw_index_size = 3, s.position_size = 3;
+    s.raw_position_size = 12, s.topology = 250, s.raw_topology = 7, s.topology_tolerance = of(F_NONFINITE, 0);
+    put_settings(&b, &s);
+    op_shells(&b, 2, 0, 0, 0, 0, 0, 78);
+    write_seed("formats_invalid", &b);
+
+    /* meshfix_check's reasons: fans on one edge (manifold), bow-ties,
+       open sheets, inside-out shells; no outputs at all (NULL) */
+    memset(&b, 0, sizeof(b)), s = defaults(MAJORITY), s.requirements = 2 | 4 | 8 | 16, s.outputs = 0, s.outputs_null = 1;
+    s.summary = 2;
+    put_settings(&b, &s);
+    op_fan(&b, 5, 0, 100, 79);
+    op_fan(&b, 4, 1, 100, 80);
+    op_shells(&b, 3, 2 | 4, 0, 1 | 8, 0, 4, 81);
+    write_seed("check_reasons", &b);
 
     printf("%lu bytes in all\n", (unsigned long)total);
     return 0;
