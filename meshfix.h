@@ -2235,25 +2235,60 @@ typedef struct meshfix__builder {
     unsigned int leaf;     /* most primitives in a leaf */
 } meshfix__builder;
 
+/* Boxes of a range as four floats a corner (x y z and a lane nobody
+   reads), so that SIMD grows them a corner at a time. */
 typedef struct meshfix__range {
+    float box[8];       /* low x y z -, high x y z - */
+    float centroids[8]; /* the same for the centroids */
     unsigned int count;
-    float box[6];       /* low x y z, high x y z */
-    float centroids[6];
 } meshfix__range;
+
+#define MESHFIX__HIGH 4 /* where a range box's high corner starts */
 
 MESHFIX__PRIVATE void meshfix__empty_range(meshfix__range *r)
 {
+    int k;
     r->count = 0;
-    meshfix__empty_box(r->box);
-    meshfix__empty_box(r->centroids);
+    for (k = 0; k < 4; ++k) {
+        r->box[k] = r->centroids[k] = 1e30f;
+        r->box[MESHFIX__HIGH + k] = r->centroids[MESHFIX__HIGH + k] = -1e30f;
+    }
 }
 
+/* low = min(low, a), high = max(high, b), four lanes: the same bits
+   with SIMD or without (no rounding, and nothing here is NaN). */
+#if MESHFIX__SSE
+MESHFIX__PRIVATE void meshfix__grow4(float *low, float *high, const float *a, const float *b)
+{
+    _mm_storeu_ps(low, _mm_min_ps(_mm_loadu_ps(low), _mm_loadu_ps(a)));
+    _mm_storeu_ps(high, _mm_max_ps(_mm_loadu_ps(high), _mm_loadu_ps(b)));
+}
+#elif MESHFIX__NEON
+MESHFIX__PRIVATE void meshfix__grow4(float *low, float *high, const float *a, const float *b)
+{
+    vst1q_f32(low, vminq_f32(vld1q_f32(low), vld1q_f32(a)));
+    vst1q_f32(high, vmaxq_f32(vld1q_f32(high), vld1q_f32(b)));
+}
+#else
+MESHFIX__PRIVATE void meshfix__grow4(float *low, float *high, const float *a, const float *b)
+{
+    int k;
+    for (k = 0; k < 4; ++k) {
+        low[k] = a[k] < low[k] ? a[k] : low[k];
+        high[k] = b[k] > high[k] ? b[k] : high[k];
+    }
+}
+#endif
+
+/* A slot is read four floats at a time: its low corner, its high corner
+   and its centroid each with the next float (arrays of slots keep one
+   float more after the last). */
 MESHFIX__PRIVATE void meshfix__range_add_slot(meshfix__range *r, const float *slot)
 {
     r->count++;
-    meshfix__grow_box(r->box, r->box + 3, slot);
-    meshfix__grow_box(r->box, r->box + 3, slot + 3);
-    meshfix__grow_box(r->centroids, r->centroids + 3, slot + MESHFIX__SLOT_CENTROID);
+    meshfix__grow4(r->box, r->box + MESHFIX__HIGH, slot, slot + 3);
+    meshfix__grow4(r->centroids, r->centroids + MESHFIX__HIGH, slot + MESHFIX__SLOT_CENTROID,
+                   slot + MESHFIX__SLOT_CENTROID);
 }
 
 MESHFIX__PRIVATE void meshfix__range_add_range(meshfix__range *r, const meshfix__range *other)
@@ -2261,10 +2296,8 @@ MESHFIX__PRIVATE void meshfix__range_add_range(meshfix__range *r, const meshfix_
     if (other->count == 0)
         return; /* its box is inside out: its corners are not points */
     r->count += other->count;
-    meshfix__grow_box(r->box, r->box + 3, other->box);
-    meshfix__grow_box(r->box, r->box + 3, other->box + 3);
-    meshfix__grow_box(r->centroids, r->centroids + 3, other->centroids);
-    meshfix__grow_box(r->centroids, r->centroids + 3, other->centroids + 3);
+    meshfix__grow4(r->box, r->box + MESHFIX__HIGH, other->box, other->box + MESHFIX__HIGH);
+    meshfix__grow4(r->centroids, r->centroids + MESHFIX__HIGH, other->centroids, other->centroids + MESHFIX__HIGH);
 }
 
 MESHFIX__PRIVATE void meshfix__fit_range(const meshfix__builder *k, unsigned int first, unsigned int count,
@@ -2276,15 +2309,17 @@ MESHFIX__PRIVATE void meshfix__fit_range(const meshfix__builder *k, unsigned int
         meshfix__range_add_slot(r, k->slots + 9 * (size_t)i);
 }
 
-/* Moves the slots whose centroid falls in a bin below `split` to the front;
-   returns how many. */
+/* Moves the slots whose centroid lies below `threshold` on the axis to
+   the front; returns how many. A bin is a monotonic function of the
+   centroid, so "in a bin below the split" is "below the least centroid
+   of the bins above it", a float comparison. */
 MESHFIX__PRIVATE unsigned int meshfix__partition(meshfix__builder *k, unsigned int first, unsigned int count, int axis,
-                                                 double low, double scale, unsigned int split)
+                                                 float threshold)
 {
     unsigned int lo = first, hi = first + count;
     while (lo < hi) {
         float *c = k->slots + 9 * (size_t)lo;
-        if (meshfix__bin((double)c[MESHFIX__SLOT_CENTROID + axis], low, scale) < split) {
+        if (c[MESHFIX__SLOT_CENTROID + axis] < threshold) {
             lo++;
         } else {
             float tmp[9];
@@ -2315,9 +2350,12 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__builder *k, unsigned int f
     if (count <= k->leaf)
         return 0;
     for (a = 1; a < 3; ++a)
-        axis = r->centroids[3 + a] - r->centroids[a] > r->centroids[3 + axis] - r->centroids[axis] ? a : axis;
-    if (use_sah && r->centroids[3 + axis] > r->centroids[axis]) {
-        scale = (double)MESHFIX__BINS / ((double)r->centroids[3 + axis] - (double)r->centroids[axis]);
+        axis = r->centroids[MESHFIX__HIGH + a] - r->centroids[a] >
+                       r->centroids[MESHFIX__HIGH + axis] - r->centroids[axis]
+                   ? a
+                   : axis;
+    if (use_sah && r->centroids[MESHFIX__HIGH + axis] > r->centroids[axis]) {
+        scale = (double)MESHFIX__BINS / ((double)r->centroids[MESHFIX__HIGH + axis] - (double)r->centroids[axis]);
         for (j = 0; j < MESHFIX__BINS; ++j)
             meshfix__empty_range(&bins[j]);
         for (i = first; i < first + count; ++i) {
@@ -2338,8 +2376,8 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__builder *k, unsigned int f
             meshfix__range_add_range(right, &bins[j]);
             if (below[j].count == 0 || right->count == 0)
                 continue;
-            cost = meshfix__box_area(below[j].box, below[j].box + 3) * (float)below[j].count +
-                   meshfix__box_area(right->box, right->box + 3) * (float)right->count;
+            cost = meshfix__box_area(below[j].box, below[j].box + MESHFIX__HIGH) * (float)below[j].count +
+                   meshfix__box_area(right->box, right->box + MESHFIX__HIGH) * (float)right->count;
             /* <= keeps the lowest of equal splits, as a forward search with < would */
             if (cost <= best_cost) {
                 best_cost = cost;
@@ -2351,7 +2389,7 @@ MESHFIX__PRIVATE unsigned int meshfix__split(meshfix__builder *k, unsigned int f
             meshfix__empty_range(right);
             for (j = best; j < MESHFIX__BINS; ++j)
                 meshfix__range_add_range(right, &bins[j]);
-            return meshfix__partition(k, first, count, axis, (double)r->centroids[axis], scale, best);
+            return meshfix__partition(k, first, count, axis, right->centroids[axis]);
         }
     }
     /* all centroids in one point, in one bin, or the tree already deep:
@@ -2374,11 +2412,11 @@ MESHFIX__PRIVATE void meshfix__empty_node(meshfix__node *n)
 }
 
 MESHFIX__PRIVATE void meshfix__set_child(meshfix__node *n, int c, unsigned int child, unsigned int count,
-                                        const float box[6])
+                                        const float low[3], const float high[3])
 {
     int k;
     for (k = 0; k < 3; ++k)
-        n->low[k][c] = box[k], n->high[k][c] = box[3 + k];
+        n->low[k][c] = low[k], n->high[k][c] = high[k];
     n->child[c] = child;
     n->count[c] = (unsigned char)count;
 }
@@ -2406,7 +2444,7 @@ MESHFIX__PRIVATE int meshfix__four_parts(meshfix__builder *k, const meshfix__pen
         meshfix__range left, right;
         unsigned int split;
         for (i = 0, best = -1; i < n; ++i) {
-            float area = meshfix__box_area(parts[i].range.box, parts[i].range.box + 3);
+            float area = meshfix__box_area(parts[i].range.box, parts[i].range.box + MESHFIX__HIGH);
             if (!leaf[i] && area > largest)
                 best = i, largest = area;
         }
@@ -2453,7 +2491,8 @@ MESHFIX__PRIVATE unsigned int meshfix__build_tree(meshfix__builder *k, unsigned 
         n = meshfix__four_parts(k, &p, parts, leaf);
         meshfix__empty_node(node);
         for (c = n; c-- > 0;) { /* pushed last to first: the first child is built next */
-            meshfix__set_child(node, c, parts[c].first, leaf[c] ? parts[c].range.count : 0u, parts[c].range.box);
+            meshfix__set_child(node, c, parts[c].first, leaf[c] ? parts[c].range.count : 0u, parts[c].range.box,
+                               parts[c].range.box + MESHFIX__HIGH);
             if (leaf[c])
                 continue;
             parts[c].parent = index;
@@ -3074,7 +3113,7 @@ typedef struct meshfix__geometry {
     unsigned char *patch_turn;  /* per patch: its frame relative to its unit's */
     unsigned int *triangle_unit; /* per triangle: its unit, NONE when it has no area */
     meshfix__unit *units;
-    float *unit_slots;          /* scratch for trees over units: 9 floats per unit */
+    float *unit_slots;          /* scratch for trees over units: 9 floats per unit, and one more */
     unsigned int *unit_ids;
     meshfix__node *shell_nodes; /* a tree over the boxes of closed and nearly closed units */
     unsigned int *shell_ids;
@@ -3440,11 +3479,19 @@ MESHFIX__PRIVATE void meshfix__add_pair(meshfix__pair *pairs, size_t *count, con
 
 #define MESHFIX__NEAREST_CANDIDATES 128
 
+/* A segment in a cell: what a search needs to pass over it without
+   reading the segment (most candidates are of the searcher's own patch,
+   or too far). */
+typedef struct meshfix__cell_item {
+    float middle[3], half;  /* its middle and half its length */
+    unsigned int segment, patch;
+} meshfix__cell_item;
+
 typedef struct meshfix__grid {
     double cell;
     size_t mask;
-    unsigned int *start;   /* per bucket + 1 */
-    unsigned int *items;   /* segment ids, bucket by bucket */
+    unsigned int *start;       /* per bucket + 1 */
+    meshfix__cell_item *items; /* bucket by bucket */
 } meshfix__grid;
 
 MESHFIX__PRIVATE size_t meshfix__grid_bucket(const meshfix__grid *grid, double x, double y, double z)
@@ -3513,9 +3560,14 @@ MESHFIX__PRIVATE void meshfix__grid_pass(meshfix__grid *grid, const meshfix__seg
                 (j > 1 && meshfix__compare_cells(cells[j], cells[0]) == 0))
                 continue;
             bucket = meshfix__grid_bucket(grid, cells[j][0], cells[j][1], cells[j][2]);
-            if (place)
-                grid->items[grid->start[bucket]++] = i;
-            else
+            if (place) {
+                meshfix__cell_item *item = &grid->items[grid->start[bucket]++];
+                for (k = 0; k < 3; ++k)
+                    item->middle[k] = (float)points[1][k];
+                item->half = (float)(0.5 * segments[i].length);
+                item->segment = i;
+                item->patch = segments[i].patch;
+            } else
                 grid->start[bucket + 1]++;
         }
     }
@@ -3634,11 +3686,29 @@ MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix
     meshfix__grid_pass(grid, segments, n, 0);
     for (k = 0; k < buckets; ++k)
         grid->start[k + 1] += grid->start[k];
-    grid->items = (unsigned int *)meshfix__take(&g->arena, grid->start[buckets], sizeof(unsigned int));
+    grid->items = (meshfix__cell_item *)meshfix__take(&g->arena, grid->start[buckets], sizeof(meshfix__cell_item));
     if (grid->items == NULL)
         return 0;
     meshfix__grid_pass(grid, segments, n, 1); /* start[b] now ends bucket b */
     return 1;
+}
+
+/* Whether the segment of `item` lies farther than `best` from the one
+   with this middle and half length, by their middles alone: every point
+   of a segment is within half its length of its middle, so the mean
+   distance of one's points to the other is at least the distance of the
+   middles less the two halves. The margin covers the rounding of the
+   item's floats, so nothing the exact measure would keep is pruned. */
+MESHFIX__PRIVATE int meshfix__surely_farther(const double middle[3], double half, const meshfix__cell_item *item,
+                                           double best)
+{
+    double d2 = 0, slack = half + (double)item->half + best + 1e-5 * (1.0 + best);
+    int k;
+    for (k = 0; k < 3; ++k) {
+        double x = middle[k] - (double)item->middle[k];
+        d2 += x * x;
+    }
+    return d2 > slack * slack;
 }
 
 /* Stage 3: each segment's partner, the segment of another patch that
@@ -3655,12 +3725,15 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
         meshfix__segment *s = &segments[i];
         double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = reach;
         unsigned int best_id = MESHFIX__NONE, looked = 0;
-        int ring;
+        double middle[3], half = 0.5 * s->length;
+        int ring, axis;
         meshfix__segment_cells(grid, s, reach, lo, hi);
         meshfix__segment_cells(grid, s, 0.0, inner_lo, inner_hi);
         /* a segment too long for the grid searches nothing: as if it found
            nothing within reach (others may still choose it) */
         s->distance = reach;
+        for (axis = 0; axis < 3; ++axis)
+            middle[axis] = 0.5 * (s->p[axis] + s->q[axis]);
         if (!meshfix__cells_usable(lo, hi))
             continue;
         for (ring = 0; ring < 2; ++ring)
@@ -3675,9 +3748,10 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
                         bucket = meshfix__grid_bucket(grid, x, y, z);
                         for (j = bucket == 0 ? 0 : grid->start[bucket - 1];
                              j < grid->start[bucket] && looked < MESHFIX__NEAREST_CANDIDATES; ++j, ++looked) {
-                            unsigned int f = grid->items[j];
+                            const meshfix__cell_item *item = &grid->items[j];
+                            unsigned int f = item->segment;
                             double d;
-                            if (segments[f].patch == s->patch)
+                            if (item->patch == s->patch || meshfix__surely_farther(middle, half, item, best))
                                 continue;
                             d = meshfix__segment_distance(s, &segments[f]);
                             if (d < best || (d == best && (best_id == MESHFIX__NONE ||
@@ -4744,7 +4818,7 @@ MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
     for (t = 0; t < m->triangle_count; ++t)
         g->triangle_unit[t] = meshfix__has_area(m, t) ? g->patch_unit[m->tri_patch[t]] : MESHFIX__NONE;
     g->units = (meshfix__unit *)meshfix__take(&g->arena, units, sizeof(meshfix__unit));
-    g->unit_slots = (float *)meshfix__take(&g->arena, 9 * units, sizeof(float));
+    g->unit_slots = (float *)meshfix__take(&g->arena, 9 * units + 1, sizeof(float));
     g->unit_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
     g->shell_nodes = (meshfix__node *)meshfix__take_aligned(&g->arena, units, sizeof(meshfix__node), MESHFIX__NODE_ALIGN);
     g->shell_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
@@ -5017,13 +5091,13 @@ MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *
         meshfix__add_size(&total, l, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, l, sizeof(unsigned int), &at) && meshfix__add_size(&total, l, sizeof(double), &at) &&
         meshfix__add_size(&total, meshfix__grid_buckets(b) + 1, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, b, 3 * sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, b, 3 * sizeof(meshfix__cell_item), &at) &&
         /* the merge */
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, 1, &at) &&
         meshfix__add_size(&total, p, 1, &at) && meshfix__add_size(&total, vis, 3 * sizeof(double), &at) &&
         /* units, the tree over shells, the nets of rings */
         meshfix__add_size(&total, p, sizeof(meshfix__unit), &at) &&
-        meshfix__add_size(&total, p, 9 * sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, 9 * p + 1, sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, MESHFIX__NODE_ALIGN - 16, 1, &at) &&
         meshfix__add_size(&total, p, sizeof(meshfix__node), &at) &&
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(int), &at) &&

@@ -10,7 +10,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int load_model(const char *path, mio_mesh *g)
+/* a suite may use only some of these */
+#if defined(__GNUC__) || defined(__clang__)
+#define MODELS_MAYBE_UNUSED __attribute__((unused))
+#else
+#define MODELS_MAYBE_UNUSED
+#endif
+
+MODELS_MAYBE_UNUSED static int load_model(const char *path, mio_mesh *g)
 {
     char error[256];
     if (mio_load(path, g, error, sizeof(error)))
@@ -35,7 +42,7 @@ typedef struct engine_mesh {
 
 #define ENGINE_STRIDE (8 * sizeof(float))
 
-static void engine_free(engine_mesh *e)
+MODELS_MAYBE_UNUSED static void engine_free(engine_mesh *e)
 {
     free(e->vertices);
     free(e->indices);
@@ -85,7 +92,7 @@ static int engine_corner(const char *text, const size_t counts[3], long out[3])
 
 /* Loads `path`; polygons become fans. Returns 0 (and says why) when the
    file is missing or malformed. */
-static int engine_obj_load(const char *path, engine_mesh *e)
+MODELS_MAYBE_UNUSED static int engine_obj_load(const char *path, engine_mesh *e)
 {
     FILE *f = fopen(path, "r");
     char line[4096];
