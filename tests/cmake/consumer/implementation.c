@@ -1,0 +1,3 @@
+/* The one file that holds the implementation. */
+#define MESHFIX_IMPLEMENTATION
+#include "meshfix.h"
