@@ -1,0 +1,324 @@
+// The typed-array API: orient, inspect, check, weld, options and errors,
+// the ES module and CommonJS entry points, and the WebAssembly against the
+// native build of the same header on generated meshes.
+//   node test/api.test.mjs NATIVE_BINARY
+import { execFileSync } from 'node:child_process';
+import { createRequire } from 'node:module';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import * as esm from '../dist/meshfix.mjs';
+import { compareWithNative, failed, jsDir, random, runNative, test } from './common.mjs';
+
+const { ready, orient, inspect, check, weld, MeshfixError, version } = esm;
+const require = createRequire(import.meta.url);
+const native = process.argv[2];
+
+// a tetrahedron with its last face turned inside out (the README's example)
+const tetraPositions = new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]);
+const tetraIndices = () => new Uint32Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 3, 2]);
+
+// A UV sphere (or torus) with seams: positions repeat at the seam, as an engine's buffer does.
+function sphere(rings, segments, torus) {
+    const positions = [], indices = [];
+    for (let r = 0; r <= rings; ++r)
+        for (let s = 0; s <= segments; ++s) {
+            const u = (s / segments) * 2 * Math.PI, v = (r / rings) * (torus ? 2 * Math.PI : Math.PI);
+            if (torus)
+                positions.push((2 + Math.cos(v)) * Math.cos(u), (2 + Math.cos(v)) * Math.sin(u), Math.sin(v));
+            else
+                positions.push(Math.sin(v) * Math.cos(u), Math.sin(v) * Math.sin(u), Math.cos(v));
+        }
+    const at = (r, s) => r * (segments + 1) + s;
+    for (let r = 0; r < rings; ++r)
+        for (let s = 0; s < segments; ++s) {
+            const a = at(r, s), b = at(r + 1, s), c = at(r + 1, s + 1), d = at(r, s + 1);
+            if (torus || r > 0)
+                indices.push(a, b, c);
+            if (torus || r < rings - 1)
+                indices.push(a, c, d);
+        }
+    return { positions: new Float32Array(positions), indices: new Uint32Array(indices) };
+}
+
+function scramble(indices, share, seed) {
+    const out = indices.slice();
+    const next = random(seed);
+    let reversed = 0;
+    for (let t = 0; t < out.length / 3; ++t)
+        if (next() < share) {
+            [out[3 * t + 1], out[3 * t + 2]] = [out[3 * t + 2], out[3 * t + 1]];
+            reversed++;
+        }
+    return { indices: out, reversed };
+}
+
+function throwsCode(body, code) {
+    try {
+        body();
+    } catch (error) {
+        return error instanceof MeshfixError && error.code === code ? [] : [`threw ${error.name} ${error.code}: ${error.message}`];
+    }
+    return [`did not throw ${code}`];
+}
+
+function throwsType(body, Type, pattern) {
+    try {
+        body();
+    } catch (error) {
+        return error instanceof Type && pattern.test(error.message) ? [] : [`threw ${error.name}: ${error.message}`];
+    }
+    return [`did not throw ${Type.name}`];
+}
+
+await ready;
+
+await test('ready resolves; version is the header\'s', () => {
+    const header = readFileSync(join(jsDir, '..', 'meshfix.h'), 'utf8');
+    const parts = ['MAJOR', 'MINOR', 'PATCH'].map((p) => header.match(new RegExp(`#define MESHFIX_VERSION_${p} (\\d+)`))[1]);
+    return version === parts.join('.') ? [] : [`version ${version}, header ${parts.join('.')}`];
+});
+
+await test('orient: the README\'s tetrahedron, 1 triangle flipped, the same as in C', () => {
+    const r = orient(tetraIndices(), tetraPositions);
+    const problems = [];
+    if (r.report.trianglesFlipped !== 1 || r.indices[10] !== 2 || r.indices[11] !== 3)
+        problems.push(`flipped ${r.report.trianglesFlipped}, indices ${Array.from(r.indices)}`);
+    if (r.summary !== 'fixed 1 triangle in 1 patch')
+        problems.push(`summary "${r.summary}"`);
+    if (r.report.verdict !== 'repaired' || Array.from(r.flipped).join() !== '0,0,0,1')
+        problems.push(`verdict ${r.report.verdict}, flipped ${Array.from(r.flipped)}`);
+    if (!(r.indices instanceof Uint32Array) || r.patchIds.length !== 4 || r.patchConfidence.length !== 1)
+        problems.push('result arrays of the wrong type or length');
+    if (r.report.mesh.triangles !== 4 || r.report.mesh.componentsClosed !== 1 || !(r.report.mesh.signedVolume > 0))
+        problems.push(`report.mesh ${JSON.stringify(r.report.mesh)}`);
+    return problems;
+});
+
+await test('orient: the input is not changed, unless inPlace', () => {
+    const input = tetraIndices();
+    orient(input, tetraPositions);
+    const problems = input[10] === 3 ? [] : ['input changed'];
+    const r = orient(input, tetraPositions, { inPlace: true });
+    if (r.indices !== input || input[10] !== 2)
+        problems.push('inPlace did not write the input');
+    return problems;
+});
+
+await test('orient: 16-bit, 8-bit and plain-array indices come back as given', () => {
+    const problems = [];
+    for (const [name, make] of [['Uint16Array', (a) => new Uint16Array(a)], ['Uint8Array', (a) => new Uint8Array(a)],
+        ['Array', (a) => Array.from(a)]]) {
+        const r = orient(make(tetraIndices()), tetraPositions);
+        const type = name === 'Array' ? Uint32Array : { Uint16Array, Uint8Array }[name];
+        if (!(r.indices instanceof type) || r.indices[10] !== 2 || r.report.trianglesFlipped !== 1)
+            problems.push(`${name}: ${r.indices.constructor.name} ${Array.from(r.indices)}`);
+    }
+    return problems;
+});
+
+await test('orient: double positions, plain arrays and interleaved vertices (stride) give the same flips', () => {
+    const problems = [];
+    const interleaved = new Float32Array(4 * 8);
+    for (let v = 0; v < 4; ++v)
+        interleaved.set(tetraPositions.subarray(3 * v, 3 * v + 3), 8 * v);
+    const variants = {
+        Float64Array: orient(tetraIndices(), new Float64Array(tetraPositions)),
+        Array: orient(tetraIndices(), Array.from(tetraPositions)),
+        'stride 8': orient(tetraIndices(), interleaved, { positionsStride: 8 }),
+        'no positions': orient(tetraIndices(), null),
+    };
+    for (const [name, r] of Object.entries(variants))
+        if (Array.from(r.flipped).join() !== '0,0,0,1')
+            problems.push(`${name}: flipped ${Array.from(r.flipped)}`);
+    return problems;
+});
+
+await test('orient: a mesh already right comes back unchanged (clean, 0 flips)', () => {
+    const fixed = orient(tetraIndices(), tetraPositions).indices;
+    const again = orient(fixed, tetraPositions);
+    return again.report.trianglesFlipped === 0 && again.report.verdict === 'clean' &&
+        Array.from(again.indices).join() === Array.from(fixed).join() ? [] : [again.summary];
+});
+
+await test('orient: an empty mesh is clean', () => {
+    const r = orient(new Uint32Array(0), new Float32Array(0));
+    return r.report.verdict === 'clean' && r.indices.length === 0 ? [] : [r.summary];
+});
+
+await test('orient: policies by name; seed follows the lowest triangle, up faces +y', () => {
+    const problems = [];
+    const quad = new Float32Array([0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1]); // in the y = 0 plane
+    const down = new Uint32Array([0, 1, 2, 0, 2, 3]); // normal (1,0,0)x(1,0,1) = (0,-1,0)
+    const firstReversed = new Uint32Array([0, 1, 2, 0, 1, 3, 0, 3, 2, 1, 2, 3]); // only triangle 0 faces in
+    const seed = orient(firstReversed, tetraPositions, { policy: 'seed' });
+    if (Array.from(seed.flipped).join() !== '0,1,1,1')
+        problems.push(`seed flipped ${Array.from(seed.flipped)}, expected the other 3`);
+    if (Array.from(orient(firstReversed, tetraPositions).flipped).join() !== '1,0,0,0')
+        problems.push('auto did not flip triangle 0 alone');
+    const up = orient(down, quad, { policy: 'up', up: 'y' });
+    if (up.report.trianglesFlipped !== 2)
+        problems.push(`up y flipped ${up.report.trianglesFlipped}`);
+    const upVector = orient(down, quad, { policy: 'up', up: [0, -1, 0] });
+    if (upVector.report.trianglesFlipped !== 0)
+        problems.push(`up [0,-1,0] flipped ${upVector.report.trianglesFlipped}`);
+    const auto = orient(down, quad);
+    if (auto.report.trianglesFlipped !== 0)
+        problems.push(`auto flipped a lone quad: ${auto.summary}`);
+    for (const policy of ['majority', 'outward', 'visibility'])
+        if (orient(tetraIndices(), tetraPositions, { policy }).report.trianglesFlipped !== 1)
+            problems.push(`${policy} did not flip the one reversed face`);
+    return problems;
+});
+
+await test('orient: NORMAL-like vertex and triangle normals as evidence turn an open quad', () => {
+    const quad = new Float32Array([0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1]);
+    const down = new Uint32Array([0, 1, 2, 0, 2, 3]);
+    const upNormals = new Float32Array([0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0]);
+    const problems = [];
+    const byVertex = orient(down, quad, { evidence: { vertexNormals: upNormals } });
+    if (byVertex.report.trianglesFlipped !== 2 || byVertex.report.evidence.patchesByNormals !== 1)
+        problems.push(`vertex normals: ${byVertex.summary}, ${JSON.stringify(byVertex.report.evidence)}`);
+    const byTriangle = orient(down, quad, { policy: 'normals', evidence: { triangleNormals: [0, 1, 0, 0, 1, 0] } });
+    if (byTriangle.report.trianglesFlipped !== 2)
+        problems.push(`triangle normals: ${byTriangle.summary}`);
+    problems.push(...throwsType(() => orient(down, quad, { evidence: { vertexNormals: new Float32Array(6) } }), RangeError, /vertexNormals/));
+    return problems;
+});
+
+await test('inspect: reports, writes nothing; components on request', () => {
+    const input = tetraIndices();
+    const r = inspect(input, tetraPositions, { components: true });
+    const problems = [];
+    if (r.report.verdict !== 'inconsistent' || r.report.mesh.edgesInconsistent !== 3 || input[10] !== 3)
+        problems.push(`${r.summary} ${JSON.stringify(r.report.mesh)}`);
+    if (!r.components || r.components.length !== 1 || r.components[0].closed !== true || r.components[0].triangles !== 4)
+        problems.push(`components ${JSON.stringify(r.components)}`);
+    if ('indices' in r || 'flipped' in r)
+        problems.push('inspect returned indices');
+    return problems;
+});
+
+await test('check: ok, or the requirement and the reason in words', () => {
+    const problems = [];
+    const bad = check(tetraIndices(), tetraPositions);
+    if (bad.ok || bad.requirement !== 'consistent' || !/^not consistent: 3 edges/.test(bad.text) || bad.edge === null)
+        problems.push(JSON.stringify(bad));
+    const good = check(orient(tetraIndices(), tetraPositions).indices, tetraPositions, 'solid');
+    if (!good.ok || good.requirement !== null || good.result !== 'MESHFIX_OK')
+        problems.push(JSON.stringify(good));
+    const open = check(new Uint32Array([0, 1, 2]), tetraPositions, ['consistent', 'closed']);
+    if (open.ok || open.requirement !== 'closed' || !/^not closed/.test(open.text))
+        problems.push(JSON.stringify(open));
+    const invalid = check(new Uint32Array([0, 1, 7]), tetraPositions);
+    if (invalid.ok || invalid.result !== 'MESHFIX_ERROR_INDEX_OUT_OF_RANGE' || !/^not valid input/.test(invalid.text))
+        problems.push(JSON.stringify(invalid));
+    const needs = check(tetraIndices(), null, 'outward');
+    if (needs.ok || needs.result !== 'MESHFIX_ERROR_POSITIONS_REQUIRED')
+        problems.push(JSON.stringify(needs));
+    return problems;
+});
+
+await test('weld: remap to the lowest vertex within the tolerance', () => {
+    const r = weld(new Float32Array([0, 0, 0, 1, 1, 1, 0, 0, 1e-7, 1, 1, 1]), 1e-5);
+    return Array.from(r.remap).join() === '0,1,0,1' && r.uniqueCount === 2 ? [] : [JSON.stringify(r)];
+});
+
+await test('errors: the library\'s status as MeshfixError.code; bad options named', () => [
+    ...throwsCode(() => orient([0, 1, 9], tetraPositions), 'MESHFIX_ERROR_INDEX_OUT_OF_RANGE'),
+    ...throwsCode(() => orient([0, 1], tetraPositions), 'MESHFIX_ERROR_NOT_TRIANGLES'),
+    ...throwsCode(() => orient(tetraIndices(), null, { policy: 'outward' }), 'MESHFIX_ERROR_POSITIONS_REQUIRED'),
+    ...throwsCode(() => orient(tetraIndices(), tetraPositions, { evidence: { sigma: -1 } }), 'MESHFIX_ERROR_INVALID_ARGUMENT'),
+    ...throwsType(() => orient(tetraIndices(), tetraPositions, { policy: 'outwards' }), TypeError, /policy "outwards" is not one of auto/),
+    ...throwsType(() => orient(tetraIndices(), tetraPositions, { policy: 'sdf' }), TypeError, /not available from JavaScript/),
+    ...throwsType(() => orient(tetraIndices(), tetraPositions, { topology: 'welded' }), TypeError, /topology/),
+    ...throwsType(() => orient([0, -1, 2], tetraPositions), RangeError, /index -1/),
+    ...throwsType(() => orient(tetraIndices(), tetraPositions, { vertexCount: 5 }), RangeError, /vertexCount 5/),
+    ...throwsType(() => orient('0 1 2', tetraPositions), TypeError, /indices must be/),
+]);
+
+await test('memory: 300 calls and a 200k-triangle mesh leave the WebAssembly heap where it was', () => {
+    const big = sphere(250, 400, false);
+    for (let i = 0; i < 300; ++i)
+        orient(tetraIndices(), tetraPositions);
+    const r = orient(scramble(big.indices, 0.5, 7).indices, big.positions);
+    const mark = orient(tetraIndices(), tetraPositions); // still works after the heap grew
+    return r.report.mesh.triangles === big.indices.length / 3 && mark.report.trianglesFlipped === 1 ? [] : [r.summary];
+});
+
+await test('CommonJS entry: require() gives the same API and the same answers', async () => {
+    const cjs = require('../dist/meshfix.cjs');
+    await cjs.ready;
+    const problems = [];
+    const names = Object.keys(esm).sort().join();
+    if (Object.keys(cjs).sort().join() !== names)
+        problems.push(`CommonJS exports ${Object.keys(cjs).sort()} vs ES module ${names}`);
+    const r = cjs.orient(tetraIndices(), tetraPositions);
+    if (r.summary !== 'fixed 1 triangle in 1 patch')
+        problems.push(r.summary);
+    return problems;
+});
+
+await test('meshfix.d.ts declares exactly what the modules export', () => {
+    const declared = new Set();
+    for (const m of readFileSync(join(jsDir, 'meshfix.d.ts'), 'utf8').matchAll(/^export (?:const|function|class) (\w+)/gm))
+        declared.add(m[1]);
+    const exported = Object.keys(esm);
+    const missing = exported.filter((n) => !declared.has(n)), extra = [...declared].filter((n) => !exported.includes(n));
+    return missing.length || extra.length ? [`not declared: ${missing}; declared, not exported: ${extra}`] : [];
+});
+
+await test('a call before `ready` throws a clear error (fresh process)', () => {
+    const out = execFileSync(process.execPath, ['-e',
+        `const m = require(${JSON.stringify(join(jsDir, 'dist/meshfix.cjs'))});
+         try { m.orient([0, 1, 2], [0, 0, 0, 1, 0, 0, 0, 1, 0]); console.log('no error'); }
+         catch (e) { console.log(e.message); }`]).toString();
+    return /not ready yet; `await ready`/.test(out) ? [] : [out];
+});
+
+// The same meshes through the WebAssembly and the native build.
+if (native) {
+    const meshes = [];
+    const shapes = { sphere: sphere(40, 64, false), torus: sphere(48, 96, true), 'sphere 200k': sphere(250, 400, false) };
+    let seed = 1;
+    for (const [name, shape] of Object.entries(shapes))
+        for (const share of [0.1, 0.5, 0.9])
+            for (const normals of [false, true]) {
+                const { indices } = scramble(shape.indices, share, seed++);
+                // vertex normals: outward for the sphere, the torus's own
+                let vertexNormals = null;
+                if (normals) {
+                    vertexNormals = new Float32Array(shape.positions.length);
+                    for (let v = 0; v < shape.positions.length / 3; ++v) {
+                        const [x, y, z] = shape.positions.subarray(3 * v, 3 * v + 3);
+                        if (name === 'torus') {
+                            const k = 2 / Math.hypot(x, y);
+                            vertexNormals.set([x - k * x, y - k * y, z], 3 * v);
+                        } else {
+                            vertexNormals.set([x, y, z], 3 * v);
+                        }
+                    }
+                }
+                for (const policy of ['auto', 'majority', 'seed'])
+                    meshes.push({ label: `${name}, ${share * 100}% reversed, ${normals ? 'normals, ' : ''}${policy}`,
+                        indices, positions: shape.positions, normals: vertexNormals, policy });
+            }
+    const results = runNative(native, meshes, 'api_native');
+    let flips = 0, triangles = 0;
+    await test(`WebAssembly and native meshfix.h agree on ${meshes.length} generated meshes (flips, report, summary)`, () => {
+        const problems = [];
+        meshes.forEach((m, i) => {
+            const options = { policy: m.policy };
+            if (m.normals)
+                options.evidence = { vertexNormals: m.normals };
+            const r = orient(m.indices, m.positions, options);
+            problems.push(...compareWithNative(r, results[i], m.label));
+            flips += r.report.trianglesFlipped;
+            triangles += r.flipped.length;
+        });
+        return problems;
+    });
+    console.log(`    (${triangles} triangles compared one by one, ${flips} of them flipped)`);
+}
+
+console.log(`api: ${failed()} failed`);
+process.exit(failed() ? 1 : 0);
