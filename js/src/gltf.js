@@ -239,6 +239,9 @@ function gltfSummary(r) {
     const failed = r.meshes.filter((m) => m.error !== undefined).length;
     if (failed)
         notes.push(`${gltfCount(failed, 'mesh', 'meshes')} refused`);
+    const doubtful = r.meshes.filter((m) => m.verdict === 'doubtful').length;
+    if (doubtful)
+        notes.push(`${gltfCount(doubtful, 'mesh', 'meshes')} doubtful (no clear evidence for some parts)`);
     if (r.skipped.length)
         notes.push(`${gltfCount(r.skipped.length, 'primitive', 'primitives')} skipped`);
     if (r.mirroredNodes.length)
