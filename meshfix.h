@@ -2258,36 +2258,47 @@ MESHFIX__PRIVATE void meshfix__empty_range(meshfix__range *r)
 /* low = min(low, a), high = max(high, b), four lanes: the same bits
    with SIMD or without (no rounding, and nothing here is NaN). */
 #if MESHFIX__SSE
-MESHFIX__PRIVATE void meshfix__grow4(float *low, float *high, const float *a, const float *b)
+MESHFIX__PRIVATE void meshfix__grow4(float *low, float *high, __m128 a, __m128 b)
 {
-    _mm_storeu_ps(low, _mm_min_ps(_mm_loadu_ps(low), _mm_loadu_ps(a)));
-    _mm_storeu_ps(high, _mm_max_ps(_mm_loadu_ps(high), _mm_loadu_ps(b)));
+    _mm_storeu_ps(low, _mm_min_ps(_mm_loadu_ps(low), a));
+    _mm_storeu_ps(high, _mm_max_ps(_mm_loadu_ps(high), b));
 }
-#elif MESHFIX__NEON
-MESHFIX__PRIVATE void meshfix__grow4(float *low, float *high, const float *a, const float *b)
+
+/* A slot's nine floats as three corners of four lanes (the fourth lane
+   never read), without reading past the slot. */
+MESHFIX__PRIVATE void meshfix__range_add_slot(meshfix__range *r, const float *slot)
 {
-    vst1q_f32(low, vminq_f32(vld1q_f32(low), vld1q_f32(a)));
-    vst1q_f32(high, vmaxq_f32(vld1q_f32(high), vld1q_f32(b)));
+    __m128 centroid = _mm_loadu_ps(slot + 5); /* high z, then the centroid */
+    r->count++;
+    meshfix__grow4(r->box, r->box + MESHFIX__HIGH, _mm_loadu_ps(slot), _mm_loadu_ps(slot + 3));
+    centroid = _mm_shuffle_ps(centroid, centroid, _MM_SHUFFLE(0, 3, 2, 1));
+    meshfix__grow4(r->centroids, r->centroids + MESHFIX__HIGH, centroid, centroid);
+}
+
+MESHFIX__PRIVATE void meshfix__range_add_range(meshfix__range *r, const meshfix__range *other)
+{
+    if (other->count == 0)
+        return; /* its box is inside out: its corners are not points */
+    r->count += other->count;
+    meshfix__grow4(r->box, r->box + MESHFIX__HIGH, _mm_loadu_ps(other->box), _mm_loadu_ps(other->box + MESHFIX__HIGH));
+    meshfix__grow4(r->centroids, r->centroids + MESHFIX__HIGH, _mm_loadu_ps(other->centroids),
+                   _mm_loadu_ps(other->centroids + MESHFIX__HIGH));
 }
 #else
-MESHFIX__PRIVATE void meshfix__grow4(float *low, float *high, const float *a, const float *b)
+MESHFIX__PRIVATE void meshfix__grow3(float *low, float *high, const float *a, const float *b)
 {
     int k;
-    for (k = 0; k < 4; ++k) {
+    for (k = 0; k < 3; ++k) {
         low[k] = a[k] < low[k] ? a[k] : low[k];
         high[k] = b[k] > high[k] ? b[k] : high[k];
     }
 }
-#endif
 
-/* A slot is read four floats at a time: its low corner, its high corner
-   and its centroid each with the next float (arrays of slots keep one
-   float more after the last). */
 MESHFIX__PRIVATE void meshfix__range_add_slot(meshfix__range *r, const float *slot)
 {
     r->count++;
-    meshfix__grow4(r->box, r->box + MESHFIX__HIGH, slot, slot + 3);
-    meshfix__grow4(r->centroids, r->centroids + MESHFIX__HIGH, slot + MESHFIX__SLOT_CENTROID,
+    meshfix__grow3(r->box, r->box + MESHFIX__HIGH, slot, slot + 3);
+    meshfix__grow3(r->centroids, r->centroids + MESHFIX__HIGH, slot + MESHFIX__SLOT_CENTROID,
                    slot + MESHFIX__SLOT_CENTROID);
 }
 
@@ -2296,9 +2307,11 @@ MESHFIX__PRIVATE void meshfix__range_add_range(meshfix__range *r, const meshfix_
     if (other->count == 0)
         return; /* its box is inside out: its corners are not points */
     r->count += other->count;
-    meshfix__grow4(r->box, r->box + MESHFIX__HIGH, other->box, other->box + MESHFIX__HIGH);
-    meshfix__grow4(r->centroids, r->centroids + MESHFIX__HIGH, other->centroids, other->centroids + MESHFIX__HIGH);
+    meshfix__grow3(r->box, r->box + MESHFIX__HIGH, other->box, other->box + MESHFIX__HIGH);
+    meshfix__grow3(r->centroids, r->centroids + MESHFIX__HIGH, other->centroids, other->centroids + MESHFIX__HIGH);
 }
+#endif
+
 
 MESHFIX__PRIVATE void meshfix__fit_range(const meshfix__builder *k, unsigned int first, unsigned int count,
                                          meshfix__range *r)
@@ -3097,6 +3110,7 @@ typedef struct meshfix__unit {
     double mean, error, weight; /* geometric vote for the frame's side in [-1, 1], its standard error, its weight */
     unsigned int turn;         /* the verdict: 1 turns the unit over, relative to its frame */
     float confidence;
+    size_t rays;               /* cast for its evidence (report.evidence.rays_cast) */
 } meshfix__unit;
 
 typedef struct meshfix__geometry {
@@ -3113,7 +3127,7 @@ typedef struct meshfix__geometry {
     unsigned char *patch_turn;  /* per patch: its frame relative to its unit's */
     unsigned int *triangle_unit; /* per triangle: its unit, NONE when it has no area */
     meshfix__unit *units;
-    float *unit_slots;          /* scratch for trees over units: 9 floats per unit, and one more */
+    float *unit_slots;          /* scratch for trees over units: 9 floats per unit */
     unsigned int *unit_ids;
     meshfix__node *shell_nodes; /* a tree over the boxes of closed and nearly closed units */
     unsigned int *shell_ids;
@@ -4413,6 +4427,7 @@ MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned in
     for (i = 0; i < cap; ++i) {
         int vote = kind == MESHFIX__BY_VOLUME ? meshfix__sample_nesting(g, index, i, list, count)
                                                : meshfix__sample_sides(g, index, kind, i, list, count);
+        u->rays += kind == MESHFIX__BY_VOLUME ? 1u : 2u;
         meshfix__add_vote(&votes, vote);
         if ((i + 1) % MESHFIX__BATCH != 0)
             continue;
@@ -4436,7 +4451,7 @@ MESHFIX__PRIVATE int meshfix__significant(const meshfix__unit *u, double sigma)
 }
 
 /* An edge of unit u passes through a triangle of unit e. */
-MESHFIX__PRIVATE int meshfix__crosses(const meshfix__geometry *g, unsigned int u, unsigned int e)
+MESHFIX__PRIVATE int meshfix__crosses(const meshfix__geometry *g, unsigned int u, unsigned int e, size_t *rays)
 {
     const meshfix__bvh *b = &g->bvh;
     unsigned int i, k;
@@ -4451,6 +4466,7 @@ MESHFIX__PRIVATE int meshfix__crosses(const meshfix__geometry *g, unsigned int u
             meshfix__ray ray;
             along[0] = d[0] - a[0], along[1] = d[1] - a[1], along[2] = d[2] - a[2];
             meshfix__setup_ray(&ray, a, along, 1e-4f, 1.0f - 1e-4f);
+            ++*rays;
             if (meshfix__trace(b, b->unit_root[e], &ray, &q))
                 return 1;
         }
@@ -4481,7 +4497,7 @@ MESHFIX__PRIVATE int meshfix__crosses_a_shell(const meshfix__geometry *g, unsign
     n = meshfix__boxes_around(g->shell_nodes, g->shell_root, g->shell_ids, g->units[u].box, 1, list,
                               MESHFIX__MOST_ENCLOSERS);
     for (i = 0; i < n; ++i)
-        if (list[i] != u && meshfix__crosses(g, u, list[i]))
+        if (list[i] != u && meshfix__crosses(g, u, list[i], &g->units[u].rays))
             return 1;
     return 0;
 }
@@ -4497,6 +4513,7 @@ MESHFIX__PRIVATE void meshfix__gap_evidence(const meshfix__geometry *g, unsigned
     MESHFIX_MEMSET(&votes, 0, sizeof(votes));
     for (i = 0; i < cap; ++i) {
         meshfix__add_vote(&votes, meshfix__sample_sides(g, index, MESHFIX__BY_PARITY, i, &index, 1));
+        u->rays += 2;
         if ((i + 1) % MESHFIX__BATCH != 0)
             continue;
         u->mean = meshfix__vote_mean(&votes);
@@ -4619,13 +4636,38 @@ MESHFIX__PRIVATE void meshfix__gather_evidence(meshfix__geometry *g, int phase, 
 }
 
 /* The trees every measurement may walk, built before the measuring runs
-   on several threads: each unit's (a unit's tree writes only its own
-   slots and nodes, so they could be built in parallel too). */
+   on several threads. A unit's tree reads and writes only its own slots
+   and nodes, so the units are built as tasks of parallel_for (each the
+   same tree however the tasks run). Units are dealt to tasks in strides,
+   so that one task does not get all the large ones. */
+#define MESHFIX__TREE_TASKS 64
+
+typedef struct meshfix__tree_task {
+    meshfix__bvh *bvh;
+    const meshfix__mesh *m;
+    unsigned int unit_count;
+} meshfix__tree_task;
+
+MESHFIX__PRIVATE void meshfix__tree_chunk(void *context, size_t chunk)
+{
+    const meshfix__tree_task *task = (const meshfix__tree_task *)context;
+    unsigned int u;
+    for (u = (unsigned int)chunk; u < task->unit_count; u += MESHFIX__TREE_TASKS)
+        meshfix__unit_tree(task->bvh, task->m, u);
+}
+
 MESHFIX__PRIVATE void meshfix__build_unit_trees(meshfix__geometry *g)
 {
-    unsigned int u;
-    for (u = 0; u < g->unit_count; ++u)
-        meshfix__unit_tree(&g->bvh, g->m, u);
+    meshfix__tree_task task;
+    size_t chunks = g->unit_count < MESHFIX__TREE_TASKS ? g->unit_count : MESHFIX__TREE_TASKS, c;
+    task.bvh = &g->bvh;
+    task.m = g->m;
+    task.unit_count = g->unit_count;
+    if (g->o->parallel_for != NULL && chunks > 1)
+        g->o->parallel_for(meshfix__tree_chunk, &task, chunks, g->o->parallel_user);
+    else
+        for (c = 0; c < chunks; ++c)
+            meshfix__tree_chunk(&task, c);
 }
 
 /* The tree over the boxes of the closed and nearly closed units. */
@@ -4818,7 +4860,7 @@ MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
     for (t = 0; t < m->triangle_count; ++t)
         g->triangle_unit[t] = meshfix__has_area(m, t) ? g->patch_unit[m->tri_patch[t]] : MESHFIX__NONE;
     g->units = (meshfix__unit *)meshfix__take(&g->arena, units, sizeof(meshfix__unit));
-    g->unit_slots = (float *)meshfix__take(&g->arena, 9 * units + 1, sizeof(float));
+    g->unit_slots = (float *)meshfix__take(&g->arena, 9 * units, sizeof(float));
     g->unit_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
     g->shell_nodes = (meshfix__node *)meshfix__take_aligned(&g->arena, units, sizeof(meshfix__node), MESHFIX__NODE_ALIGN);
     g->shell_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
@@ -4882,6 +4924,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
         const meshfix__unit *x = &g->units[u];
         meshfix__decide_unit(&g->units[u], g->sigma);
         r->evidence.shells_inward += x->cavity;
+        r->evidence.rays_cast += x->rays;
         MESHFIX_TRACE(("meshfix: unit %u: area %g, as given %g / %g, volume %g, closed %d, unmatched %g; "
                        "evidence %d: %.3f +- %.3f x %g; turn %u, confidence %.2f%s\n",
                        u, x->area, x->kept, x->reversed, x->volume, (int)x->closed, x->unmatched, (int)x->kind, x->mean,
@@ -5097,7 +5140,7 @@ MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *
         meshfix__add_size(&total, p, 1, &at) && meshfix__add_size(&total, vis, 3 * sizeof(double), &at) &&
         /* units, the tree over shells, the nets of rings */
         meshfix__add_size(&total, p, sizeof(meshfix__unit), &at) &&
-        meshfix__add_size(&total, 9 * p + 1, sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, p, 9 * sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, MESHFIX__NODE_ALIGN - 16, 1, &at) &&
         meshfix__add_size(&total, p, sizeof(meshfix__node), &at) &&
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(int), &at) &&

@@ -7,8 +7,11 @@
 #include "../examples/meshio.h"
 #define MESHGEN_IMPLEMENTATION
 #include "../examples/meshgen.h"
+#define SCENES_IMPLEMENTATION
+#include "scenes.h"
 
 #include "check.h"
+#include <pthread.h>
 #include "internals.h"
 #include <math.h>
 #include <stdio.h>
@@ -587,6 +590,77 @@ static void backwards_parallel_for(void (*task)(void *, size_t), void *context, 
         task(context, i);
 }
 
+/* A real pool: `threads` threads, thread t runs tasks t, t + threads, ... */
+typedef struct thread_pool_job {
+    void (*task)(void *, size_t);
+    void *context;
+    size_t count, first, step;
+} thread_pool_job;
+
+static void *thread_pool_run(void *argument)
+{
+    thread_pool_job *job = (thread_pool_job *)argument;
+    size_t i;
+    for (i = job->first; i < job->count; i += job->step)
+        job->task(job->context, i);
+    return NULL;
+}
+
+static void threaded_parallel_for(void (*task)(void *, size_t), void *context, size_t count, void *user)
+{
+    enum { MOST = 8 };
+    size_t threads = *(const size_t *)user, t;
+    pthread_t ids[MOST];
+    int started[MOST];
+    thread_pool_job jobs[MOST];
+    threads = threads < MOST ? threads : MOST;
+    for (t = 0; t < threads; ++t) {
+        jobs[t].task = task, jobs[t].context = context, jobs[t].count = count, jobs[t].first = t, jobs[t].step = threads;
+        started[t] = pthread_create(&ids[t], NULL, thread_pool_run, &jobs[t]) == 0;
+        if (!started[t])
+            thread_pool_run(&jobs[t]); /* no thread to be had: this one does it */
+    }
+    for (t = 0; t < threads; ++t)
+        if (started[t])
+            pthread_join(ids[t], NULL);
+}
+
+/* AUTO on scenes of many units (trees built and evidence gathered as
+   tasks) with 2 and 4 real threads: the result of the single-threaded
+   run, bit for bit. */
+static void test_threads_identical(void)
+{
+    static const char *const names[] = {"assembly", "parts", "glass", "cavity_cut"};
+    size_t n, threads;
+    for (n = 0; n < sizeof(names) / sizeof(names[0]); ++n) {
+        scene sc;
+        scene_trial t;
+        unsigned int *single, *multi;
+        meshfix_report r1, r2;
+        CHECK(scene_build(&sc, names[n], SCENE_SMALL) == 1);
+        CHECK(scene_trial_make(&t, &sc, &SCENE_CORRUPTIONS[4], 9));
+        single = (unsigned int *)malloc(t.mesh.index_count * sizeof(unsigned int));
+        multi = (unsigned int *)malloc(t.mesh.index_count * sizeof(unsigned int));
+        CHECK_EQ(meshfix_orient(single, t.mesh.indices, t.mesh.index_count, t.mesh.positions, t.mesh.vertex_count, 0,
+                                NULL, &r1, NULL),
+                 MESHFIX_OK);
+        for (threads = 2; threads <= 4; threads += 2) {
+            meshfix_options o = {0};
+            o.parallel_for = threaded_parallel_for;
+            o.parallel_user = &threads;
+            CHECK_EQ(meshfix_orient(multi, t.mesh.indices, t.mesh.index_count, t.mesh.positions, t.mesh.vertex_count,
+                                    0, &o, &r2, NULL),
+                     MESHFIX_OK);
+            CHECK(memcmp(single, multi, t.mesh.index_count * sizeof(unsigned int)) == 0);
+            CHECK(memcmp(&r1, &r2, sizeof(r1)) == 0);
+        }
+        CHECK(r1.triangles_flipped > 0);
+        free(single), free(multi);
+        scene_trial_free(&t);
+        scene_free(&sc);
+    }
+}
+
 static void test_parallel_for_identical(void)
 {
     mio_mesh g;
@@ -760,6 +834,7 @@ static const test_case tests[] = {
     {"Moebius strip: reported, no crash", test_mobius},
     {"independent of triangle order and of how much was flipped", test_order_and_flip_independence},
     {"parallel_for gives bit-identical results; confidence in [0, 1]", test_parallel_for_identical},
+    {"AUTO with 2 and 4 real threads gives the single-threaded result", test_threads_identical},
     {"weld: exact, tolerance, -0, NaN", test_weld},
     {"watertight rays through shared vertices and edges", test_watertight_rays},
 };

@@ -27,6 +27,8 @@
 #include "../../examples/meshgen.h"
 #include "common.h"
 
+#include <thread>
+
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -49,10 +51,26 @@ static size_t openmesh_build(const mio_mesh &g)
     return refused;
 }
 
+// parallel_for with `*user` std::threads, thread t taking tasks t, t + n, ...
+static void thread_parallel_for(void (*task)(void *, size_t), void *context, size_t count, void *user)
+{
+    size_t n = *static_cast<const size_t *>(user);
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < n; ++t)
+        pool.emplace_back([=] {
+            for (size_t i = t; i < count; i += n)
+                task(context, i);
+        });
+    for (size_t i = 0; i < count; i += n)
+        task(context, i);
+    for (std::thread &thread : pool)
+        thread.join();
+}
+
 struct Row {
     std::string model, variant;
     size_t triangles = 0, patches = 0;
-    Timing preset, visibility, flood, openmesh;
+    Timing preset, threads2, visibility, flood, openmesh;
     size_t refused = 0;
     double right_input = 0, right_default = 0, right_visibility = 0;
     size_t flips_default = 0, flips_visibility = 0;
@@ -121,6 +139,15 @@ static void run_variant(const mio_mesh &cut, const std::vector<unsigned int> &pa
     row->right_visibility = right_after(in, out, truth, &row->flips_visibility);
 
     row->preset = time_runs(runs, [&] { orient(g.positions, nullptr); });
+    {
+        // the same with a parallel_for of two std::threads
+        meshfix_options two;
+        std::memset(&two, 0, sizeof(two));
+        size_t threads = 2;
+        two.parallel_for = thread_parallel_for;
+        two.parallel_user = &threads;
+        row->threads2 = time_runs(runs, [&] { orient(g.positions, &two); });
+    }
     row->visibility = time_runs(runs, [&] { orient(g.positions, &vis); });
     row->flood = time_runs(runs, [&] { orient(nullptr, &seed); });
     row->openmesh = time_runs(runs, [&] { row->refused = openmesh_build(g); });
@@ -182,8 +209,9 @@ int part_cut(const Settings &s, std::vector<std::string> *summary)
     } models[3] = {{"sphere 1M", 1024}, {"torus 1M", 1024}, {"head.stl", 500}};
     std::vector<Row> rows;
     int status = 0;
-    std::printf("| model | input | triangles | default | visibility | flood fill | OpenMesh | default / OpenMesh | "
-                "visibility / OpenMesh | default / flood fill |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::printf("| model | input | triangles | default | default, 2 threads | visibility | flood fill | OpenMesh | "
+                "default / OpenMesh | visibility / OpenMesh | default / flood fill |\n"
+                "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const Model &model : models) {
         Mesh whole;
         bool ok;
@@ -212,8 +240,9 @@ int part_cut(const Settings &s, std::vector<std::string> *summary)
             run_variant(cut.m, patch_of, patches, variant, runs, &row);
             status |= row.failed;
             double per = 1e3 * 1e5 / row.triangles;
-            std::printf("| %s | %s | %zu | %s | %s | %s | %s | %s | %s | %s |\n", row.model.c_str(), row.variant.c_str(),
-                        row.triangles, min_med(row.preset, per).c_str(), min_med(row.visibility, per).c_str(),
+            std::printf("| %s | %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s |\n", row.model.c_str(),
+                        row.variant.c_str(), row.triangles, min_med(row.preset, per).c_str(),
+                        min_med(row.threads2, per).c_str(), min_med(row.visibility, per).c_str(),
                         min_med(row.flood, per, 2).c_str(), min_med(row.openmesh, per).c_str(),
                         ratio(row.preset.min, row.openmesh.min).c_str(),
                         ratio(row.visibility.min, row.openmesh.min).c_str(),
