@@ -29,16 +29,16 @@ SUITES = test_meshfix test_sdf test_visibility test_hostile test_trust test_api
 FAST = -O3 -ffast-math -g
 
 $(B)/test_%: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h tests/models.h $(HEADERS) | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -pthread -o $@ $< -lm
 
 $(B)/test_%_asan: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h tests/models.h $(HEADERS) | $(B)
-	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -o $@ $< -lm
+	$(CC) -std=c99 -O1 -g $(WARN) $(SANITIZE) -pthread -o $@ $< -lm
 
 $(B)/test_%_fast: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h tests/models.h $(HEADERS) | $(B)
-	$(CC) -std=c99 $(FAST) $(WARN) -o $@ $< -lm
+	$(CC) -std=c99 $(FAST) $(WARN) -pthread -o $@ $< -lm
 
 $(B)/test_%_m32: tests/test_%.c tests/check.h tests/internals.h tests/scenes.h tests/models.h $(HEADERS) | $(B)
-	$(CC) -m32 -std=c99 $(CFLAGS) $(WARN) -o $@ $< -lm
+	$(CC) -m32 -std=c99 $(CFLAGS) $(WARN) -pthread -o $@ $< -lm
 
 $(B)/test_openmesh: tests/test_openmesh.cpp $(HEADERS) | $(B)
 	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -o $@ tests/test_openmesh.cpp $(OPENMESH)
@@ -57,7 +57,7 @@ BENCH_ARGS ?=
 
 $(B)/bench: $(BENCH_SOURCES) tests/bench/common.h tests/internals.h $(HEADERS) | $(B)
 	$(CXX) -std=c++17 -O2 -DNDEBUG $(WARN) -Wno-maybe-uninitialized $(BENCH_EMBREE) -o $@ $(BENCH_SOURCES) \
-	    $(OPENMESH) $(BENCH_EMBREE_LIB)
+	    $(OPENMESH) $(BENCH_EMBREE_LIB) -pthread
 
 # the quality programs the bench runs (part 3)
 $(B)/stl_truth: tests/eval/stl_truth.c meshfix.h | $(B)
