@@ -1,15 +1,16 @@
 /* Finding 3 (fuzz_stress, MSan): MESHFIX_POLICY_VISIBILITY with
-   MESHFIX_VISIBILITY_COHERENCE_ONLY decides patches from memory nobody
-   wrote. The same call is made twice with an allocator that fills fresh
-   blocks with one pattern, then with another (each block its own byte,
-   so two arrays never hold the same garbage); a correct library gives
-   the same flips both times.
+   MESHFIX_VISIBILITY_COHERENCE_ONLY decided patches from memory nobody
+   wrote (fixed during the session that found it: the merge's front, back
+   and area are set before the verdicts read them). The same call is made
+   twice with an allocator that fills fresh blocks with one pattern, then
+   with another (each block its own byte, so two arrays never hold the
+   same garbage); a correct library gives the same flips both times.
 
        cc -std=c99 -g -o build/coherence_only tests/fuzz/crashes/coherence_only_uninitialised.c -lm
-       build/coherence_only        (prints DIFFERENT and exits 1 while the bug is there)
+       build/coherence_only        (exits 0; prints DIFFERENT and exits 1 while the bug is there)
 
    Built with clang -fsanitize=memory -fsanitize-memory-track-origins=2, the
-   third call (default allocator, memory MSan knows is unwritten) reports
+   third call (default allocator, memory MSan knows is unwritten) reported
    the read in meshfix__visibility_verdicts of a block from
    meshfix__alloc_merge. */
 #define MESHFIX_IMPLEMENTATION
@@ -47,13 +48,13 @@ static size_t orient(unsigned int *out, const unsigned int *indices, size_t inde
     meshfix_report r;
     memset(&o, 0, sizeof(o));
     o.policy = MESHFIX_POLICY_VISIBILITY;
-    o.visibility_flags = MESHFIX_VISIBILITY_COHERENCE_ONLY;
+    o.visibility.flags = MESHFIX_VISIBILITY_COHERENCE_ONLY;
     if (pattern != 0) {
-        o.allocator.alloc_fn = filling_alloc;
-        o.allocator.free_fn = filling_free;
+        o.memory.alloc_func = filling_alloc;
+        o.memory.free_func = filling_free;
     }
     fill = pattern;
-    if (meshfix_orient(out, indices, index_count, positions, vertex_count, 12, &o, &r) != MESHFIX_OK) {
+    if (meshfix_orient(out, indices, index_count, positions, vertex_count, 12, &o, &r, NULL) != MESHFIX_OK) {
         printf("orient failed\n");
         exit(2);
     }

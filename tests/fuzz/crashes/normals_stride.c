@@ -1,17 +1,20 @@
-/* Finding 2 (fuzz_stress, UBSan): the strides of options.triangle_normals
-   and options.vertex_normals are not validated. With stride 13 the
-   normals are read as misaligned floats (undefined behaviour; UBSan:
-   "load of misaligned address" in meshfix__is_finite_point called from
-   meshfix__authored_normal) and the call succeeds, where a positions
-   stride that is not a multiple of 4 (or below 12) is refused with
-   MESHFIX_ERROR_INVALID_ARGUMENT. Also checked: stride 0, documented as
-   12 bytes, behaves as 12 (an earlier state of the rewrite used it as 0,
-   giving every triangle the first triangle's normal; fixed meanwhile).
-   Two separate triangles wound +z; the caller's normals say +z for the
-   first and -z for the second, so MESHFIX_POLICY_NORMALS flips the second.
+/* Finding 2 (fuzz_stress, UBSan): the strides of
+   options.evidence.triangle_normals and vertex_normals were not
+   validated. With stride 13 the normals were read as misaligned floats
+   (undefined behaviour; UBSan: "load of misaligned address" in
+   meshfix__is_finite_point called from meshfix__authored_normal) and the
+   call succeeded, where a positions stride that is not a multiple of 4
+   (or below 12) is refused with MESHFIX_ERROR_INVALID_ARGUMENT. Also
+   checked: stride 0, documented as 12 bytes, behaves as 12 (an earlier
+   state of the rewrite used it as 0, giving every triangle the first
+   triangle's normal). Two separate triangles wound +z; the caller's
+   normals say +z for the first and -z for the second, so
+   MESHFIX_POLICY_NORMALS flips the second. Fixed in 0.2:
+   meshfix__options_valid refuses a normals stride that is not 0 or a
+   multiple of 4 of at least 12.
 
        cc -std=c99 -g -fsanitize=undefined -o build/normals_stride tests/fuzz/crashes/normals_stride.c -lm
-       build/normals_stride        (UBSan reports; exits 1 while stride 13 is accepted) */
+       build/normals_stride        (exits 0; UBSan reports and it exits 1 while stride 13 is accepted) */
 #define MESHFIX_IMPLEMENTATION
 #include "../../../meshfix.h"
 
@@ -27,9 +30,9 @@ static int flipped_second(const float *normals, size_t stride, meshfix_result *r
     meshfix_report r;
     memset(&o, 0, sizeof(o));
     o.policy = MESHFIX_POLICY_NORMALS;
-    o.triangle_normals = normals;
-    o.triangle_normals_stride = stride;
-    *result = meshfix_orient(out, indices, 6, positions, 6, 12, &o, &r);
+    o.evidence.triangle_normals = normals;
+    o.evidence.triangle_normals_stride = stride;
+    *result = meshfix_orient(out, indices, 6, positions, 6, 12, &o, &r, NULL);
     return *result == MESHFIX_OK && out[4] == 5;
 }
 
