@@ -1,0 +1,731 @@
+"""meshfix: find and repair triangle winding, on NumPy arrays.
+
+A thin binding (ctypes) over meshfix.h's C API, built into a shared library
+next to this file (python/build.sh, or pip). The arrays go to C as they are:
+uint16 or uint32 indices become the C API's index_size 2 or 4, float32 or
+float64 positions its position_size 4 or 8, and a (vertex_count, k) array
+whose rows hold x y z first (an engine's interleaved vertex buffer) its
+stride, so nothing is copied unless a dtype or layout has no C counterpart.
+
+    import numpy as np, meshfix
+    positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+    indices = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 3, 2]], np.uint32)
+    fixed, report = meshfix.orient(indices, positions)
+    report.triangles_flipped   # 1
+    report.summary             # 'fixed 1 triangle in 1 patch'
+    fixed[3]                   # array([1, 2, 3], dtype=uint32)
+
+Functions (keyword options as in C's meshfix_options, below):
+    orient(indices, positions=None, *, outputs=False, **options)
+        -> (new_indices, Report) or (new_indices, Report, Outputs)
+    inspect(indices, positions=None, *, outputs=False, **options)
+        -> Report or (Report, Outputs)
+    check(indices, positions=None, requirements="consistent", **options) -> Check
+    weld(positions, tolerance=0.0, **options) -> (remap, unique_count)
+    scratch_size(index_count, vertex_count, **options) -> int
+
+Options (all optional; the C defaults when left out):
+    policy="auto" | "seed" | "majority" | "outward" | "sdf" | "visibility"
+           | "up" | "normals"                (or a Policy, or its int)
+    topology="positions" | "indices" | "weld", weld_tolerance=0.0,
+    up=(x, y, z), seed=0,
+    evidence=dict(sigma=, min_confidence=, triangle_normals=(T, 3) array,
+                  vertex_normals=(V, 3) array),
+    visibility=dict(rays=, min_samples=, coherence_distance=, c0=, eps=,
+                    kv=, flags=),
+    sdf=dict(distance=f(p) -> float, gradient=g(p) -> (gx, gy, gz),
+             step=, mode="per_patch" | "per_triangle"),
+    memory=dict(scratch=writable buffer of scratch_size() bytes),
+    threads=N: options.parallel_for runs the ray batches on N threads
+               (the result is the same, bit for bit).
+memory.alloc_func/free_func are not exposed: the library uses malloc.
+
+Errors from C raise MeshfixError (.result, .name, the C text); a mesh that
+fails check() is not an error: check() returns a false Check with the
+reason in .text.
+"""
+
+import ctypes
+import dataclasses
+import enum
+import glob
+import os
+import sys
+from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c_float, c_int, c_long,
+                    c_size_t, c_uint, c_void_p)
+
+import numpy as np
+
+__all__ = ["orient", "inspect", "check", "weld", "scratch_size", "summary", "Report", "MeshFacts",
+           "EvidenceCounts", "Outputs", "Check", "MeshfixError", "Policy", "Topology", "SdfMode", "Verdict",
+           "Requirement", "VISIBILITY_COHERENCE_ONLY", "VISIBILITY_ONLY", "version", "__version__"]
+
+# ---- the shared library ----
+
+
+def _find_library():
+    here = os.path.dirname(os.path.abspath(__file__))
+    explicit = os.environ.get("MESHFIX_LIBRARY")
+    if explicit:
+        return explicit
+    for pattern in ("_libmeshfix*.so", "_libmeshfix*.dylib", "_libmeshfix*.pyd", "_libmeshfix*.dll"):
+        found = sorted(glob.glob(os.path.join(here, pattern)))
+        if found:
+            return found[0]
+    raise ImportError("meshfix: no _libmeshfix shared library next to %s; build it with python/build.sh "
+                      "(or pip install ./python), or set MESHFIX_LIBRARY" % __file__)
+
+
+_lib = ctypes.CDLL(_find_library())
+
+# ---- the C structs, field for field (checked against the library at import) ----
+
+_TASK = CFUNCTYPE(None, c_void_p, c_size_t)
+_PARALLEL_FOR = CFUNCTYPE(None, _TASK, c_void_p, c_size_t, c_void_p)
+_SDF_DISTANCE = CFUNCTYPE(c_float, POINTER(c_float), c_void_p)
+_SDF_GRADIENT = CFUNCTYPE(None, POINTER(c_float), POINTER(c_float), c_void_p)
+
+
+class _MemoryOptions(Structure):
+    _fields_ = [("alloc_func", c_void_p), ("free_func", c_void_p), ("user_data", c_void_p),
+                ("scratch", c_void_p), ("scratch_size", c_size_t)]
+
+
+class _EvidenceOptions(Structure):
+    _fields_ = [("sigma", c_float), ("min_confidence", c_float),
+                ("triangle_normals", c_void_p), ("triangle_normals_stride", c_size_t),
+                ("vertex_normals", c_void_p), ("vertex_normals_stride", c_size_t)]
+
+
+class _VisibilityOptions(Structure):
+    _fields_ = [("rays", c_size_t), ("min_samples", c_uint), ("coherence_distance", c_float),
+                ("c0", c_float), ("eps", c_float), ("kv", c_float), ("flags", c_uint)]
+
+
+class _SdfOptions(Structure):
+    _fields_ = [("distance", _SDF_DISTANCE), ("gradient", _SDF_GRADIENT), ("user", c_void_p),
+                ("step", c_float), ("mode", c_int)]
+
+
+class _Options(Structure):
+    _fields_ = [("index_size", c_uint), ("position_size", c_uint), ("topology", c_int),
+                ("weld_tolerance", c_float), ("policy", c_int), ("up", c_float * 3), ("seed", c_uint),
+                ("evidence", _EvidenceOptions), ("visibility", _VisibilityOptions), ("sdf", _SdfOptions),
+                ("memory", _MemoryOptions), ("parallel_for", _PARALLEL_FOR), ("parallel_user", c_void_p)]
+
+
+class _Component(Structure):
+    _fields_ = [("first_triangle", c_size_t), ("triangles", c_size_t), ("vertices", c_size_t),
+                ("edges", c_size_t), ("edges_boundary", c_size_t), ("edges_non_manifold", c_size_t),
+                ("patches", c_size_t), ("euler_characteristic", c_long), ("closed", c_int),
+                ("orientable", c_int), ("area", c_double), ("signed_volume", c_double)]
+
+
+class _Outputs(Structure):
+    _fields_ = [("flipped", c_void_p), ("patch_ids", c_void_p), ("patch_confidence", c_void_p),
+                ("patch_confidence_capacity", c_size_t), ("components", c_void_p),
+                ("components_capacity", c_size_t)]
+
+
+class _MeshFacts(Structure):
+    _fields_ = [(name, c_size_t) for name in (
+        "triangles", "triangles_degenerate", "triangles_zero_area", "triangles_duplicate", "vertices_used",
+        "vertices_joined", "vertices_non_finite", "vertices_non_manifold", "edges", "edges_boundary",
+        "edges_manifold", "edges_non_manifold", "edges_inconsistent", "patches", "patches_closed",
+        "patches_inside_out", "components", "components_closed", "components_non_orientable")] + [
+        ("euler_characteristic", c_long), ("area", c_double), ("signed_volume", c_double)]
+
+
+class _EvidenceCounts(Structure):
+    _fields_ = [(name, c_size_t) for name in (
+        "patches_by_volume", "patches_by_parity", "patches_by_visibility", "patches_by_normals", "patches_kept",
+        "shells_inward", "rays_cast", "patch_pairs", "patches_merged", "pairs_conflicting", "sdf_evaluations",
+        "triangles_sdf_disagree")]
+
+
+class _Report(Structure):
+    _fields_ = [("verdict", c_int), ("triangles_flipped", c_size_t), ("patches_flipped", c_size_t),
+                ("patches_doubtful", c_size_t), ("triangles_doubtful", c_size_t), ("area_doubtful", c_double),
+                ("edges_inconsistent_before", c_size_t), ("mesh", _MeshFacts), ("evidence", _EvidenceCounts)]
+
+
+class _CheckFailure(Structure):
+    _fields_ = [("result", c_int), ("requirement", c_uint), ("count", c_size_t), ("triangle", c_size_t),
+                ("edge", c_uint * 2), ("text", c_char * 200)]
+
+
+_C_NAMES = {
+    _MemoryOptions: "meshfix_memory_options", _EvidenceOptions: "meshfix_evidence_options",
+    _VisibilityOptions: "meshfix_visibility_options", _SdfOptions: "meshfix_sdf_options",
+    _Options: "meshfix_options", _Component: "meshfix_component", _Outputs: "meshfix_outputs",
+    _MeshFacts: "meshfix_mesh_facts", _EvidenceCounts: "meshfix_evidence_counts", _Report: "meshfix_report",
+    _CheckFailure: "meshfix_check_failure",
+}
+
+
+def _check_layout():
+    """The library's own account of its structs must match the ctypes mirror."""
+    _lib.meshfix_python_layout.restype = c_size_t
+    _lib.meshfix_python_layout.argtypes = [c_char_p, c_size_t]
+    size = _lib.meshfix_python_layout(None, 0) + 1
+    buffer = ctypes.create_string_buffer(size)
+    _lib.meshfix_python_layout(buffer, size)
+    c_side, version = {}, None
+    for line in buffer.value.decode().splitlines():
+        words = line.split()
+        if words[0] == "version":
+            version = tuple(int(w) for w in words[1:])
+        else:
+            c_side[(words[0], words[1])] = (int(words[2]), int(words[3]))
+    py_side = {}
+    for struct, name in _C_NAMES.items():
+        py_side[(name, "-")] = (0, ctypes.sizeof(struct))
+        for field, _ in struct._fields_:
+            descriptor = getattr(struct, field)
+            py_side[(name, field)] = (descriptor.offset, descriptor.size)
+    if c_side != py_side:
+        differ = sorted(k for k in set(c_side) | set(py_side) if c_side.get(k) != py_side.get(k))
+        raise ImportError("meshfix: the library's structs differ from this module's mirror (%s); this "
+                          "module does not match meshfix.h %s" % (", ".join(" ".join(k) for k in differ[:8]),
+                                                                 ".".join(map(str, version))))
+    return version
+
+
+_VERSION = _check_layout()
+version = _VERSION
+__version__ = "%d.%d.%d" % _VERSION
+
+
+def _declare(name, restype, argtypes):
+    function = getattr(_lib, name)
+    function.restype = restype
+    function.argtypes = argtypes
+    return function
+
+
+_orient = _declare("meshfix_orient", c_int, [c_void_p, c_void_p, c_size_t, c_void_p, c_size_t, c_size_t,
+                                             POINTER(_Options), POINTER(_Report), POINTER(_Outputs)])
+_inspect = _declare("meshfix_inspect", c_int, [c_void_p, c_size_t, c_void_p, c_size_t, c_size_t,
+                                               POINTER(_Options), POINTER(_Report), POINTER(_Outputs)])
+_check = _declare("meshfix_check", c_int, [c_void_p, c_size_t, c_void_p, c_size_t, c_size_t, c_uint,
+                                           POINTER(_Options), POINTER(_CheckFailure)])
+_summary = _declare("meshfix_summary", c_size_t, [POINTER(_Report), c_char_p, c_size_t])
+_weld = _declare("meshfix_weld", c_int, [c_void_p, c_void_p, c_size_t, c_size_t, c_float, POINTER(_Options),
+                                         POINTER(c_size_t)])
+_scratch_size = _declare("meshfix_scratch_size", c_size_t, [c_size_t, c_size_t, POINTER(_Options)])
+_result_string = _declare("meshfix_result_string", c_char_p, [c_int])
+_verdict_string = _declare("meshfix_verdict_string", c_char_p, [c_int])
+
+# ---- enums ----
+
+
+class Policy(enum.IntEnum):
+    AUTO = 0
+    SEED = 1
+    MAJORITY = 2
+    OUTWARD = 3
+    SDF = 4
+    VISIBILITY = 5
+    UP = 6
+    NORMALS = 7
+
+
+class Topology(enum.IntEnum):
+    POSITIONS = 0
+    INDICES = 1
+    WELD = 2
+
+
+class SdfMode(enum.IntEnum):
+    PER_PATCH = 0
+    PER_TRIANGLE = 1
+
+
+class Verdict(enum.IntEnum):
+    CLEAN = 0
+    REPAIRED = 1
+    DOUBTFUL = 2
+    NOT_ORIENTABLE = 3
+    INCONSISTENT = 4
+    INSIDE_OUT = 5
+
+    def __str__(self):
+        return _verdict_string(int(self)).decode()
+
+
+class Requirement(enum.IntFlag):
+    CONSISTENT = 1
+    CLOSED = 2
+    MANIFOLD = 4
+    OUTWARD = 8
+    NO_DEGENERATE = 16
+    SOLID = 31
+
+
+VISIBILITY_COHERENCE_ONLY = 1
+VISIBILITY_ONLY = 2
+
+_RESULT_NAMES = ["MESHFIX_OK", "MESHFIX_ERROR_INVALID_ARGUMENT", "MESHFIX_ERROR_NOT_TRIANGLES",
+                 "MESHFIX_ERROR_INDEX_OUT_OF_RANGE", "MESHFIX_ERROR_TOO_LARGE", "MESHFIX_ERROR_POSITIONS_REQUIRED",
+                 "MESHFIX_ERROR_SCRATCH_TOO_SMALL", "MESHFIX_ERROR_OUT_OF_MEMORY", "MESHFIX_ERROR_NON_FINITE"]
+
+
+class MeshfixError(Exception):
+    """A meshfix_result other than MESHFIX_OK: .result (int), .name, and the C text as the message."""
+
+    def __init__(self, result):
+        self.result = int(result)
+        self.name = _RESULT_NAMES[self.result] if 0 <= self.result < len(_RESULT_NAMES) else "MESHFIX_ERROR"
+        super().__init__("%s: %s" % (self.name, _result_string(self.result).decode()))
+
+
+def _enum(kind, value, what):
+    if isinstance(value, str):
+        try:
+            return kind[value.strip().upper().replace(" ", "_").replace("-", "_")]
+        except KeyError:
+            raise ValueError("meshfix: unknown %s %r (one of %s)" % (
+                what, value, ", ".join(m.name.lower() for m in kind))) from None
+    return int(value)
+
+
+# ---- the report, as dataclasses built from the C structs' fields ----
+
+def _plain(ctype):
+    return {c_double: float, c_float: float}.get(ctype, int)
+
+
+MeshFacts = dataclasses.make_dataclass("MeshFacts", [(name, _plain(t)) for name, t in _MeshFacts._fields_])
+MeshFacts.__module__ = __name__
+MeshFacts.__doc__ = "What the mesh is (orient: as returned; inspect: as given): meshfix_mesh_facts."
+EvidenceCounts = dataclasses.make_dataclass("EvidenceCounts",
+                                            [(name, _plain(t)) for name, t in _EvidenceCounts._fields_])
+EvidenceCounts.__module__ = __name__
+EvidenceCounts.__doc__ = "What decided the patches (orient): meshfix_evidence_counts."
+
+
+@dataclasses.dataclass
+class Report:
+    """meshfix_report, with the verdict as a Verdict and meshfix_summary's line as .summary."""
+    verdict: Verdict
+    summary: str
+    triangles_flipped: int
+    patches_flipped: int
+    patches_doubtful: int
+    triangles_doubtful: int
+    area_doubtful: float
+    edges_inconsistent_before: int
+    mesh: MeshFacts
+    evidence: EvidenceCounts
+
+    def to_dict(self):
+        """Plain types only (the verdict as its C text, e.g. "repaired"), for JSON."""
+        d = dataclasses.asdict(self)
+        d["verdict"] = str(self.verdict)
+        return d
+
+
+def _fields(struct, kind):
+    return kind(**{name: getattr(struct, name) for name, _ in struct._fields_})
+
+
+def _report(c_report):
+    size = _summary(ctypes.byref(c_report), None, 0) + 1
+    line = ctypes.create_string_buffer(size)
+    _summary(ctypes.byref(c_report), line, size)
+    try:
+        verdict = Verdict(c_report.verdict)
+    except ValueError:
+        verdict = c_report.verdict
+    return Report(verdict=verdict, summary=line.value.decode(),
+                  triangles_flipped=c_report.triangles_flipped, patches_flipped=c_report.patches_flipped,
+                  patches_doubtful=c_report.patches_doubtful, triangles_doubtful=c_report.triangles_doubtful,
+                  area_doubtful=c_report.area_doubtful, edges_inconsistent_before=c_report.edges_inconsistent_before,
+                  mesh=_fields(c_report.mesh, MeshFacts), evidence=_fields(c_report.evidence, EvidenceCounts))
+
+
+def summary(report):
+    """The report's line in plain words (meshfix_summary): the same as report.summary."""
+    return report.summary
+
+
+@dataclasses.dataclass
+class Outputs:
+    """meshfix_outputs as arrays (None when not asked for).
+
+    flipped: bool per triangle (orient); patch_ids: uint32 per triangle
+    (0xFFFFFFFF: degenerate); patch_confidence: float32 per patch (orient);
+    components: a structured array with meshfix_component's fields."""
+    flipped: object = None
+    patch_ids: object = None
+    patch_confidence: object = None
+    components: object = None
+
+
+@dataclasses.dataclass
+class Check:
+    """meshfix_check's answer; true when every requirement holds.
+
+    requirement: the Requirement that failed first (0 when all hold);
+    count, triangle (None: none) and edge (None: none) say where;
+    text: the one-line reason; result: the MESHFIX_* name when the mesh was
+    not valid input at all."""
+    ok: bool
+    requirement: int
+    count: int
+    triangle: object
+    edge: object
+    text: str
+    result: str
+
+    def __bool__(self):
+        return self.ok
+
+
+# ---- arrays in ----
+
+def _indices(indices):
+    """(array for C, index_size, shape and dtype to give back)."""
+    a = np.asarray(indices)
+    if a.dtype == np.uint16 or a.dtype == np.uint32:
+        pass  # as they are: index_size 2 or 4
+    elif a.dtype.kind in "iu":  # int64 (NumPy's default), int32, ...: a checked copy
+        if a.size and (a.min() < 0 or a.max() > 0xFFFFFFFF):
+            raise MeshfixError(3)
+        a = a.astype(np.uint32)
+    else:
+        raise TypeError("meshfix: indices must be an integer array (uint16 or uint32 go to C as they are), "
+                        "not %s" % a.dtype)
+    if a.ndim > 2 or (a.ndim == 2 and a.shape[1] != 3):
+        raise ValueError("meshfix: indices must be flat or (triangles, 3), not %s" % (a.shape,))
+    c = np.require(a, requirements=["C", "A"]).reshape(-1)
+    return c, c.dtype.itemsize, np.asarray(indices).shape, np.asarray(indices).dtype
+
+
+def _positions(positions):
+    """(array kept alive, vertex_count, stride in bytes, position_size)."""
+    if positions is None:
+        return None, 0, 0, 4
+    a = np.asarray(positions)
+    if a.dtype.kind == "f" and a.dtype.itemsize in (4, 8) and not a.dtype.isnative:
+        a = a.astype(a.dtype.newbyteorder("="))
+    if a.dtype != np.float32 and a.dtype != np.float64:
+        if a.dtype.kind not in "iuf":
+            raise TypeError("meshfix: positions must be float32 or float64 (or numbers), not %s" % a.dtype)
+        a = a.astype(np.float32 if a.dtype == np.float16 else np.float64)
+    if a.ndim == 1:
+        if a.size % 3:
+            raise ValueError("meshfix: flat positions must hold x y z triples (%d values)" % a.size)
+        a = a.reshape(-1, 3)
+    if a.ndim != 2 or a.shape[1] < 3:
+        raise ValueError("meshfix: positions must be (vertices, 3) or (vertices, k >= 3) with x y z first, "
+                         "not %s" % (a.shape,))
+    item = a.itemsize
+    # rows of x y z first, `stride` bytes apart: an interleaved vertex buffer goes as it is
+    if not (a.strides[1] == item and a.strides[0] >= 3 * item and a.strides[0] % item == 0 and
+            a.flags.aligned) or a.shape[0] == 0:
+        a = np.ascontiguousarray(a[:, :3])
+    stride = a.strides[0] if a.shape[0] > 1 else 3 * item
+    return a, a.shape[0], stride, item
+
+
+def _normals(normals, what):
+    if normals is None:
+        return None, 0
+    a = np.asarray(normals)
+    if a.dtype != np.float32:  # the C API takes float normals (also from double positions)
+        a = a.astype(np.float32)
+    if a.ndim == 1:
+        a = a.reshape(-1, 3)
+    if a.ndim != 2 or a.shape[1] < 3:
+        raise ValueError("meshfix: %s must be (n, 3) or (n, k >= 3), not %s" % (what, a.shape))
+    if not (a.strides[1] == 4 and a.strides[0] >= 12 and a.strides[0] % 4 == 0 and a.flags.aligned):
+        a = np.ascontiguousarray(a[:, :3])
+    return a, a.strides[0]
+
+
+def _pointer(a):
+    return None if a is None else a.ctypes.data_as(c_void_p)
+
+
+class _Call:
+    """meshfix_options filled from keywords, and everything C will point at, kept alive."""
+
+    _GROUPS = {
+        "evidence": ("sigma", "min_confidence", "triangle_normals", "vertex_normals"),
+        "visibility": ("rays", "min_samples", "coherence_distance", "c0", "eps", "kv", "flags"),
+        "sdf": ("distance", "gradient", "step", "mode"),
+        "memory": ("scratch",),
+    }
+
+    def __init__(self, index_size=4, position_size=4, policy=None, topology=None, weld_tolerance=0.0, up=None,
+                 seed=0, evidence=None, visibility=None, sdf=None, memory=None, threads=None):
+        o = self.options = _Options()
+        self.keep = []
+        self.error = None
+        o.index_size = index_size
+        o.position_size = position_size
+        if policy is not None:
+            o.policy = _enum(Policy, policy, "policy")
+        if topology is not None:
+            o.topology = _enum(Topology, topology, "topology")
+        o.weld_tolerance = weld_tolerance
+        if up is not None:
+            up = [float(x) for x in up]
+            if len(up) != 3:
+                raise ValueError("meshfix: up must be three numbers")
+            o.up[:] = up
+        o.seed = seed
+        for group, given in (("evidence", evidence), ("visibility", visibility), ("sdf", sdf),
+                             ("memory", memory)):
+            unknown = set(given or {}) - set(self._GROUPS[group])
+            if unknown:
+                raise TypeError("meshfix: unknown %s option(s) %s (known: %s)" % (
+                    group, ", ".join(sorted(unknown)), ", ".join(self._GROUPS[group])))
+        evidence = evidence or {}
+        o.evidence.sigma = evidence.get("sigma", 0.0)
+        o.evidence.min_confidence = evidence.get("min_confidence", 0.0)
+        for name in ("triangle_normals", "vertex_normals"):
+            array, stride = _normals(evidence.get(name), name)
+            self.keep.append(array)
+            setattr(o.evidence, name, _pointer(array))
+            setattr(o.evidence, name + "_stride", stride)
+        visibility = visibility or {}
+        for name, _ in _VisibilityOptions._fields_:
+            if name in visibility:
+                setattr(o.visibility, name, visibility[name])
+        if sdf:
+            self._sdf(o.sdf, sdf)
+        if memory and memory.get("scratch") is not None:
+            buffer = memory["scratch"]
+            view = np.frombuffer(buffer, dtype=np.uint8)  # raises for a read-only buffer below
+            if not view.flags.writeable:
+                raise ValueError("meshfix: memory scratch must be writable")
+            self.keep.append((buffer, view))
+            o.memory.scratch = view.ctypes.data_as(c_void_p)
+            o.memory.scratch_size = view.nbytes
+        if threads is not None and int(threads) > 1:
+            self._parallel(o, int(threads))
+
+    def _sdf(self, s, sdf):
+        distance, gradient = sdf.get("distance"), sdf.get("gradient")
+
+        def call_distance(p, _user):
+            try:
+                return float(distance((p[0], p[1], p[2])))
+            except BaseException as e:  # reported after the C call returns
+                self.error = self.error or e
+                return 0.0
+
+        def call_gradient(p, g, _user):
+            try:
+                v = gradient((p[0], p[1], p[2]))
+                g[0], g[1], g[2] = float(v[0]), float(v[1]), float(v[2])
+            except BaseException as e:
+                self.error = self.error or e
+                g[0] = g[1] = g[2] = 0.0
+
+        if distance is not None:
+            s.distance = _SDF_DISTANCE(call_distance)
+            self.keep.append(s.distance)
+        if gradient is not None:
+            s.gradient = _SDF_GRADIENT(call_gradient)
+            self.keep.append(s.gradient)
+        s.step = sdf.get("step", 0.0)
+        s.mode = _enum(SdfMode, sdf.get("mode", 0), "sdf mode")
+
+    def _parallel(self, o, threads):
+        from concurrent.futures import ThreadPoolExecutor
+        pool = ThreadPoolExecutor(max_workers=threads)
+        self.pool = pool
+
+        def parallel_for(task, context, count, _user):
+            try:
+                # each task(context, i) is a call into C: ctypes lets go of the GIL
+                chunk = max(1, count // (4 * threads))
+                jobs = [pool.submit(lambda lo, hi: [task(context, i) for i in range(lo, hi)], lo,
+                                    min(count, lo + chunk)) for lo in range(0, count, chunk)]
+                for job in jobs:
+                    job.result()
+            except BaseException as e:
+                self.error = self.error or e
+
+        o.parallel_for = _PARALLEL_FOR(parallel_for)
+        self.keep.append(o.parallel_for)
+
+    def done(self, result):
+        if getattr(self, "pool", None) is not None:
+            self.pool.shutdown()
+        if self.error is not None:
+            raise self.error
+        if result != 0:
+            raise MeshfixError(result)
+
+
+def _outputs_wanted(outputs, allowed):
+    if outputs is True:
+        return set(allowed)
+    if not outputs:
+        return set()
+    wanted = {outputs} if isinstance(outputs, str) else set(outputs)
+    unknown = wanted - set(allowed)
+    if unknown:
+        raise ValueError("meshfix: unknown output(s) %s (known here: %s)" % (", ".join(sorted(unknown)),
+                                                                          ", ".join(allowed)))
+    return wanted
+
+
+_COMPONENT_DTYPE = np.dtype({"names": [n for n, _ in _Component._fields_],
+                             "formats": [np.dtype(t) for _, t in _Component._fields_],
+                             "offsets": [getattr(_Component, n).offset for n, _ in _Component._fields_],
+                             "itemsize": ctypes.sizeof(_Component)})
+
+
+class _OutputArrays:
+    def __init__(self, wanted, triangles, component_capacity):
+        self.o = _Outputs()
+        self.arrays = Outputs()
+        if "flipped" in wanted:
+            self.arrays.flipped = np.zeros(triangles, np.uint8)
+            self.o.flipped = _pointer(self.arrays.flipped)
+        if "patch_ids" in wanted:
+            self.arrays.patch_ids = np.zeros(triangles, np.uint32)
+            self.o.patch_ids = _pointer(self.arrays.patch_ids)
+        if "patch_confidence" in wanted:  # at most one patch per triangle
+            self.arrays.patch_confidence = np.zeros(triangles, np.float32)
+            self.o.patch_confidence = _pointer(self.arrays.patch_confidence)
+            self.o.patch_confidence_capacity = triangles
+        if "components" in wanted:
+            self.arrays.components = np.zeros(component_capacity, _COMPONENT_DTYPE)
+            self.o.components = _pointer(self.arrays.components)
+            self.o.components_capacity = component_capacity
+
+    def result(self, report):
+        a = self.arrays
+        if a.flipped is not None:
+            a.flipped = a.flipped.view(np.bool_)
+        if a.patch_confidence is not None:
+            a.patch_confidence = a.patch_confidence[:report.mesh.patches].copy()
+        if a.components is not None:
+            a.components = a.components[:report.mesh.components].copy()
+        return a
+
+
+# components are few on most meshes: a first call takes this many, and a
+# call with more components than that is made again with room for all
+_FIRST_COMPONENTS = 256
+
+
+def _run(call_c, wanted, triangles):
+    """Calls call_c(outputs pointer, report) with output arrays; again when components did not fit."""
+    capacity = min(triangles, _FIRST_COMPONENTS)
+    while True:
+        out = _OutputArrays(wanted, triangles, capacity) if wanted else None
+        report = _Report()
+        call_c(ctypes.byref(out.o) if out else None, report)
+        r = _report(report)
+        if out is None or "components" not in wanted or r.mesh.components <= capacity:
+            return r, (out.result(r) if out else None)
+        capacity = r.mesh.components
+
+
+def _mesh(indices, positions, options):
+    idx, index_size, shape, dtype = _indices(indices)
+    pos, vertex_count, stride, position_size = _positions(positions)
+    if pos is None:
+        vertex_count = int(idx.max()) + 1 if idx.size else 0
+    call = _Call(index_size=index_size, position_size=position_size, **options)
+    return idx, pos, vertex_count, stride, call, shape, dtype
+
+
+def orient(indices, positions=None, *, outputs=False, **options):
+    """Repair winding (meshfix_orient): returns (new_indices, report), or
+    (new_indices, report, outputs) when outputs is True or names some of
+    "flipped", "patch_ids", "patch_confidence", "components".
+
+    new_indices has the shape and dtype of `indices`; a flipped triangle
+    (a, b, c) is (a, c, b) in it. Without positions, vertex_count is the
+    largest index + 1 and the policy must not need them."""
+    idx, pos, vertex_count, stride, call, shape, dtype = _mesh(indices, positions, options)
+    wanted = _outputs_wanted(outputs, ("flipped", "patch_ids", "patch_confidence", "components"))
+    destination = np.empty_like(idx)
+    triangles = idx.size // 3
+
+    def call_c(out, report):
+        result = _orient(_pointer(destination), _pointer(idx), idx.size, _pointer(pos), vertex_count, stride,
+                         ctypes.byref(call.options), ctypes.byref(report), out)
+        call.done(result)
+
+    report, arrays = _run(call_c, wanted, triangles)
+    fixed = destination
+    if fixed.dtype != dtype:
+        fixed = fixed.astype(dtype)
+    fixed = fixed.reshape(shape)
+    return (fixed, report, arrays) if wanted else (fixed, report)
+
+
+def inspect(indices, positions=None, *, outputs=False, **options):
+    """Report without changing anything (meshfix_inspect): a Report, or (report,
+    outputs) when outputs is True or names "patch_ids" and/or "components"."""
+    idx, pos, vertex_count, stride, call, _, _ = _mesh(indices, positions, options)
+    wanted = _outputs_wanted(outputs, ("patch_ids", "components"))
+
+    def call_c(out, report):
+        result = _inspect(_pointer(idx), idx.size, _pointer(pos), vertex_count, stride,
+                          ctypes.byref(call.options), ctypes.byref(report), out)
+        call.done(result)
+
+    report, arrays = _run(call_c, wanted, idx.size // 3)
+    return (report, arrays) if wanted else report
+
+
+def _requirements(requirements):
+    if isinstance(requirements, str):
+        requirements = requirements.replace("|", ",").replace("+", ",").split(",")
+    if isinstance(requirements, (list, tuple, set, frozenset)):
+        bits = 0
+        for r in requirements:
+            bits |= _enum(Requirement, r, "requirement") if isinstance(r, str) else int(r)
+        return bits
+    return int(requirements)
+
+
+def check(indices, positions=None, requirements="consistent", **options):
+    """One-line assertion (meshfix_check): a Check, true when the mesh is valid
+    input and meets every requirement ("consistent", "closed", "manifold",
+    "outward", "no_degenerate", "solid", a list of them or a Requirement);
+    else false, with the reason in .text."""
+    idx, pos, vertex_count, stride, call, _, _ = _mesh(indices, positions, options)
+    failure = _CheckFailure()
+    ok = _check(_pointer(idx), idx.size, _pointer(pos), vertex_count, stride, _requirements(requirements),
+                ctypes.byref(call.options), ctypes.byref(failure))
+    call.done(0)
+    none = (1 << (8 * ctypes.sizeof(c_size_t))) - 1
+    edge = tuple(failure.edge)
+    return Check(ok=bool(ok), requirement=Requirement(failure.requirement), count=failure.count,
+                 triangle=None if failure.triangle == none else failure.triangle,
+                 edge=None if edge == (0xFFFFFFFF, 0xFFFFFFFF) else edge,
+                 text=failure.text.decode(),
+                 result=_RESULT_NAMES[failure.result] if 0 <= failure.result < len(_RESULT_NAMES) else
+                 str(failure.result))
+
+
+def weld(positions, tolerance=0.0, **options):
+    """Merge vertices closer than tolerance (meshfix_weld): returns (remap,
+    unique_count), remap[v] the lowest-index vertex v welds to (uint32)."""
+    pos, vertex_count, stride, position_size = _positions(positions)
+    call = _Call(position_size=position_size, **options)
+    remap = np.empty(vertex_count, np.uint32)
+    unique = c_size_t(0)
+    result = _weld(_pointer(remap), _pointer(pos), vertex_count, stride, tolerance, ctypes.byref(call.options),
+                   ctypes.byref(unique))
+    call.done(result)
+    return remap, unique.value
+
+
+def scratch_size(index_count, vertex_count, *, index_dtype=np.uint32, position_dtype=np.float32, **options):
+    """Bytes of options.memory.scratch a call with these counts and options
+    needs at most (meshfix_scratch_size); pass memory=dict(scratch=buffer)."""
+    call = _Call(index_size=np.dtype(index_dtype).itemsize, position_size=np.dtype(position_dtype).itemsize,
+                 **options)
+    return _scratch_size(index_count, vertex_count, ctypes.byref(call.options))
