@@ -13,8 +13,14 @@ all: $(B)/meshfix $(B)/sdf_demo
 $(B):
 	mkdir -p $(B)
 
-$(B)/meshfix: examples/meshfix.c $(HEADERS) | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/meshfix.c -lm
+# the command-line tool (tools/meshfix): C++17, glTF through Debian's
+# libtinygltf-dev (-ltinygltf); the library and the examples' loaders as C99
+TOOL_SOURCES = $(wildcard tools/meshfix/*.cpp)
+TOOL_HEADERS = $(wildcard tools/meshfix/*.h)
+
+$(B)/meshfix: $(TOOL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c $(HEADERS) | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $(B)/meshfix_libs.o tools/meshfix/libs.c
+	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -o $@ $(TOOL_SOURCES) $(B)/meshfix_libs.o -ltinygltf -pthread
 
 $(B)/demo_mesh: examples/demo_mesh.c $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/demo_mesh.c -lm

@@ -1,0 +1,820 @@
+/* meshfix command-line tool: glTF 2.0 (.gltf with its buffers, and .glb)
+   through tinygltf (Debian's libtinygltf-dev).
+
+   Each mesh is one decision, across all of its triangle primitives (modes
+   4, 5 and 6), in mesh space. A primitive whose triangles all keep their
+   winding is left as it is; otherwise its index accessor is rewritten in
+   place, or, when other primitives share it, it is a strip or fan, or the
+   primitive has no indices, a new triangle-list accessor is added to the
+   first buffer. Nodes whose transform mirrors (negative determinant: the
+   spec reverses their winding) and double-sided materials are reported,
+   never changed. A file nothing changed in is written back byte for byte,
+   its buffers and images copied beside it. Images are never decoded. */
+#include "meshfile.h"
+#include "text.h"
+
+#ifndef MESHFIX_TOOL_NO_GLTF
+#include <tiny_gltf.h>
+#endif
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <sys/stat.h>
+
+namespace tool {
+
+bool write_bytes(const std::string &path, const std::string &bytes, std::string &error);
+bool read_file(const std::string &path, std::string &data, std::string &error);
+std::string directory_of(const std::string &path);
+std::string base_name(const std::string &path);
+bool is_directory(const std::string &path);
+
+#ifdef MESHFIX_TOOL_NO_GLTF
+std::unique_ptr<MeshFile> load_gltf(const std::string &, std::string &error)
+{
+    error = "this build of meshfix has no glTF support (built without tinygltf)";
+    return nullptr;
+}
+#else
+
+namespace {
+
+/* Where a primitive's triangles are in its unit, and which vertices
+   (numbers in the primitive's own vertex attributes) they use. */
+struct PrimitiveTriangles {
+    int mesh, primitive;
+    size_t first_triangle;
+    std::vector<uint32_t> corners; /* 3 per triangle, as the spec defines them for the mode */
+};
+
+/* A flat normal: the element of a NORMAL accessor (and the TANGENT
+   accessor of the same vertices, -1 when none). */
+struct NormalSlot {
+    int normal, tangent;
+    uint32_t element;
+};
+
+class GltfFile : public MeshFile {
+public:
+    const char *format() const override { return binary ? "glb" : "gltf"; }
+    void apply(size_t unit, const Changes &changes) override;
+    bool write(const std::string &path, const std::string &target, std::string &error) override;
+    std::vector<std::string> companions() const override;
+    std::vector<std::string> notes() const override;
+    std::string json_members() const override;
+
+    tinygltf::Model model;
+    std::string path, raw;
+    bool binary = false;
+    std::vector<std::vector<PrimitiveTriangles>> unit_primitives;
+    std::vector<std::vector<NormalSlot>> unit_slots;
+    std::vector<int> index_uses; /* per accessor: primitives that use it as indices */
+    /* reported */
+    std::vector<std::pair<int, int>> mirrored; /* node, mesh */
+    std::vector<int> double_sided;
+    size_t accessors_cloned = 0, lists_written = 0, indices_added = 0, normals_negated = 0, tangents_negated = 0;
+    size_t primitives_skipped = 0;
+};
+
+/* ---- reading accessors, every range checked ---- */
+
+struct ElementView {
+    const unsigned char *base = nullptr; /* nullptr: an accessor without a bufferView (zeros) */
+    size_t stride = 0, size = 0, count = 0;
+};
+
+size_t component_size(int type)
+{
+    switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_INT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+    }
+}
+
+int components(int type)
+{
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+    }
+}
+
+/* The bytes of `count` elements of `size` bytes at `offset` of a
+   bufferView, or false when they are not all inside it and its buffer. */
+bool view_range(const tinygltf::Model &m, int view, size_t offset, size_t count, size_t size, size_t stride_or_0,
+                ElementView &out, std::string &error)
+{
+    if (view < 0 || (size_t)view >= m.bufferViews.size()) {
+        error = "bufferView " + std::to_string(view) + " does not exist";
+        return false;
+    }
+    const tinygltf::BufferView &v = m.bufferViews[(size_t)view];
+    if (v.buffer < 0 || (size_t)v.buffer >= m.buffers.size()) {
+        error = "buffer " + std::to_string(v.buffer) + " does not exist";
+        return false;
+    }
+    const std::vector<unsigned char> &data = m.buffers[(size_t)v.buffer].data;
+    size_t stride = stride_or_0 != 0 ? stride_or_0 : v.byteStride != 0 ? v.byteStride : size;
+    bool fits = v.byteOffset <= data.size() && v.byteLength <= data.size() - v.byteOffset && offset <= v.byteLength &&
+                (count == 0 || (stride >= size && (count - 1) <= (v.byteLength - offset - std::min(size, v.byteLength - offset)) / stride &&
+                                size <= v.byteLength - offset));
+    if (!fits) {
+        error = "an accessor reaches past the end of bufferView " + std::to_string(view) + " or of its buffer";
+        return false;
+    }
+    out.base = data.data() + v.byteOffset + offset;
+    out.stride = stride;
+    out.size = size;
+    out.count = count;
+    return true;
+}
+
+double read_component(const unsigned char *p, int type, bool normalized)
+{
+    switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float f;
+        std::memcpy(&f, p, 4);
+        return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return normalized ? std::max((signed char)p[0] / 127.0, -1.0) : (signed char)p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        int16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+    }
+    default: return 0.0;
+    }
+}
+
+/* An accessor's elements as doubles, `width` per element (sparse values
+   applied). */
+bool read_accessor(const tinygltf::Model &m, int index, int width, std::vector<double> &out, std::string &error)
+{
+    if (index < 0 || (size_t)index >= m.accessors.size()) {
+        error = "accessor " + std::to_string(index) + " does not exist";
+        return false;
+    }
+    const tinygltf::Accessor &a = m.accessors[(size_t)index];
+    size_t csize = component_size(a.componentType);
+    if (csize == 0 || components(a.type) != width) {
+        error = "accessor " + std::to_string(index) + " has the wrong type";
+        return false;
+    }
+    if (a.count > ((size_t)1 << 31)) {
+        error = "accessor " + std::to_string(index) + " is too large";
+        return false;
+    }
+    size_t size = csize * (size_t)width;
+    out.assign(a.count * (size_t)width, 0.0);
+    ElementView v;
+    if (a.bufferView >= 0 && !view_range(m, a.bufferView, a.byteOffset, a.count, size, 0, v, error))
+        return false;
+    for (size_t i = 0; v.base != nullptr && i < a.count; ++i)
+        for (int k = 0; k < width; ++k)
+            out[i * (size_t)width + (size_t)k] = read_component(v.base + i * v.stride + (size_t)k * csize, a.componentType, a.normalized);
+    if (a.sparse.isSparse) {
+        ElementView idx, val;
+        size_t n = (size_t)std::max(a.sparse.count, 0);
+        size_t isize = component_size(a.sparse.indices.componentType);
+        if (isize == 0 || !view_range(m, a.sparse.indices.bufferView, (size_t)std::max(a.sparse.indices.byteOffset, 0), n, isize, isize, idx, error) ||
+            !view_range(m, a.sparse.values.bufferView, (size_t)std::max(a.sparse.values.byteOffset, 0), n, size, size, val, error))
+            return false;
+        for (size_t s = 0; s < n; ++s) {
+            size_t target = (size_t)read_component(idx.base + s * isize, a.sparse.indices.componentType, false);
+            if (target >= a.count) {
+                error = "sparse index out of range in accessor " + std::to_string(index);
+                return false;
+            }
+            for (int k = 0; k < width; ++k)
+                out[target * (size_t)width + (size_t)k] = read_component(val.base + s * size + (size_t)k * csize, a.componentType, a.normalized);
+        }
+    }
+    return true;
+}
+
+/* ---- triangles of a primitive ---- */
+
+int primitive_mode(const tinygltf::Primitive &p) { return p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode; }
+
+bool is_triangles(int mode)
+{
+    return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+/* The triangles of an index stream as the spec defines them: a strip's
+   triangle i is (i, i+1, i+2) for even i and (i, i+2, i+1) for odd i; a
+   fan's is (i+1, i+2, 0). */
+std::vector<uint32_t> triangles_of(const std::vector<uint32_t> &stream, int mode)
+{
+    std::vector<uint32_t> t;
+    size_t n = stream.size();
+    if (mode == TINYGLTF_MODE_TRIANGLES)
+        t.assign(stream.begin(), stream.begin() + (long)(n - n % 3));
+    else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+        for (size_t i = 0; i + 2 < n; ++i)
+            t.insert(t.end(), {stream[i], stream[i + 1 + i % 2], stream[i + 2 - i % 2]});
+    else
+        for (size_t i = 0; i + 2 < n; ++i)
+            t.insert(t.end(), {stream[i + 1], stream[i + 2], stream[0]});
+    return t;
+}
+
+const char *const compression_extensions[] = {"KHR_draco_mesh_compression", "EXT_meshopt_compression",
+                                              "KHR_meshopt_compression"};
+
+std::string compression_message(const std::string &extension)
+{
+    return std::string(extension.find("draco") != std::string::npos ? "Draco" : "meshopt") + "-compressed primitives (" +
+           extension + ") are not supported; nothing written";
+}
+
+/* The compression extension a model uses, or "". */
+std::string compression_of(const tinygltf::Model &m)
+{
+    for (const std::string &e : m.extensionsRequired)
+        for (const char *c : compression_extensions)
+            if (e == c)
+                return e;
+    for (const tinygltf::Mesh &mesh : m.meshes)
+        for (const tinygltf::Primitive &p : mesh.primitives)
+            if (p.extensions.count(compression_extensions[0]))
+                return compression_extensions[0];
+    for (const tinygltf::BufferView &v : m.bufferViews)
+        for (const char *c : compression_extensions)
+            if (v.extensions.count(c))
+                return c;
+    return "";
+}
+
+/* ---- the units ---- */
+
+struct MeshReader {
+    GltfFile &file;
+    std::string &error;
+
+    /* Which meshes use each accessor as NORMAL or TANGENT: a normal fixed in
+       one mesh must not change another. */
+    std::map<int, std::set<int>> attribute_meshes;
+
+    bool read_indices(const tinygltf::Primitive &p, size_t vertex_count, std::vector<uint32_t> &stream)
+    {
+        if (p.indices < 0) {
+            for (size_t i = 0; i < vertex_count; ++i)
+                stream.push_back((uint32_t)i);
+            return true;
+        }
+        std::vector<double> values;
+        if (!read_accessor(file.model, p.indices, 1, values, error))
+            return false;
+        int type = file.model.accessors[(size_t)p.indices].componentType;
+        if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+            error = "index accessor " + std::to_string(p.indices) + " is not of unsigned integers";
+            return false;
+        }
+        for (double v : values) {
+            if (v >= (double)vertex_count) {
+                error = "index " + std::to_string((unsigned long)v) + " out of range (" + std::to_string(vertex_count) + " vertices)";
+                return false;
+            }
+            stream.push_back((uint32_t)v);
+        }
+        return true;
+    }
+
+    /* Adds a primitive's positions (once per POSITION accessor), normals
+       and triangles to the unit. */
+    bool add_primitive(int mesh, int index, Unit &u, std::map<int, uint32_t> &bases, std::vector<PrimitiveTriangles> &prims)
+    {
+        const tinygltf::Primitive &p = file.model.meshes[(size_t)mesh].primitives[(size_t)index];
+        auto position = p.attributes.find("POSITION");
+        if (!is_triangles(primitive_mode(p)) || position == p.attributes.end()) {
+            file.primitives_skipped += !is_triangles(primitive_mode(p)) ? 0 : 1;
+            return true;
+        }
+        std::vector<double> xyz, normals;
+        if (!read_accessor(file.model, position->second, 3, xyz, error))
+            return false;
+        size_t count = xyz.size() / 3;
+        auto found = bases.find(position->second);
+        uint32_t base = found != bases.end() ? found->second : (uint32_t)(u.positions.size() / 3);
+        if (found == bases.end()) {
+            if (u.positions.size() / 3 + count > 0xFFFFFFF0u) {
+                error = "too many vertices";
+                return false;
+            }
+            bases[position->second] = base;
+            u.positions.insert(u.positions.end(), xyz.begin(), xyz.end());
+            u.vertex_normals.resize(u.positions.size(), 0.0f);
+            auto normal = p.attributes.find("NORMAL");
+            if (normal != p.attributes.end() && read_accessor(file.model, normal->second, 3, normals, error) &&
+                normals.size() == xyz.size())
+                for (size_t i = 0; i < normals.size(); ++i)
+                    u.vertex_normals[3 * base + i] = (float)normals[i];
+            error.clear(); /* a bad NORMAL is no evidence, not a reason to refuse the file */
+        }
+        std::vector<uint32_t> stream;
+        if (!read_indices(p, count, stream))
+            return false;
+        PrimitiveTriangles pt{mesh, index, u.indices.size() / 3, triangles_of(stream, primitive_mode(p))};
+        for (uint32_t v : pt.corners)
+            u.indices.push_back(base + v);
+        prims.push_back(std::move(pt));
+        return true;
+    }
+
+    /* A NORMAL element that one triangle alone uses is a flat normal, when
+       the tool can negate it: float, not sparse, this mesh's own. */
+    void find_flat_normals(int mesh, Unit &u, const std::vector<PrimitiveTriangles> &prims, std::vector<NormalSlot> &slots)
+    {
+        std::map<std::pair<int, uint32_t>, long long> owner; /* -2: more than one triangle */
+        std::map<int, int> tangent_of;
+        for (const PrimitiveTriangles &pt : prims) {
+            const tinygltf::Primitive &p = file.model.meshes[(size_t)mesh].primitives[(size_t)pt.primitive];
+            auto normal = p.attributes.find("NORMAL");
+            if (normal == p.attributes.end() || !negatable(normal->second, 3, mesh))
+                continue;
+            auto tangent = p.attributes.find("TANGENT");
+            tangent_of[normal->second] = tangent != p.attributes.end() && negatable(tangent->second, 4, mesh) ? tangent->second : -1;
+            for (size_t c = 0; c < pt.corners.size(); ++c) {
+                long long t = (long long)(pt.first_triangle + c / 3);
+                auto inserted = owner.emplace(std::make_pair(normal->second, pt.corners[c]), t);
+                if (!inserted.second && inserted.first->second != t)
+                    inserted.first->second = -2;
+            }
+        }
+        std::vector<double> values;
+        for (const auto &o : owner) {
+            if (o.second < 0)
+                continue;
+            std::string ignored;
+            if (!read_accessor(file.model, o.first.first, 3, values, ignored))
+                continue;
+            const double *n = &values[3 * (size_t)o.first.second];
+            u.flat_normals.push_back({(uint32_t)o.second, {(float)n[0], (float)n[1], (float)n[2]}});
+            slots.push_back({o.first.first, tangent_of[o.first.first], o.first.second});
+        }
+    }
+
+    bool negatable(int accessor, int width, int mesh)
+    {
+        if (accessor < 0 || (size_t)accessor >= file.model.accessors.size())
+            return false;
+        const tinygltf::Accessor &a = file.model.accessors[(size_t)accessor];
+        ElementView v;
+        std::string ignored;
+        return a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && components(a.type) == width && !a.sparse.isSparse &&
+               a.bufferView >= 0 && attribute_meshes[accessor] == std::set<int>{mesh} &&
+               view_range(file.model, a.bufferView, a.byteOffset, a.count, 4 * (size_t)width, 0, v, ignored);
+    }
+
+    bool read()
+    {
+        tinygltf::Model &m = file.model;
+        file.index_uses.assign(m.accessors.size(), 0);
+        for (size_t mesh = 0; mesh < m.meshes.size(); ++mesh)
+            for (const tinygltf::Primitive &p : m.meshes[mesh].primitives) {
+                if (p.indices >= 0 && (size_t)p.indices < m.accessors.size())
+                    file.index_uses[(size_t)p.indices]++;
+                for (const char *name : {"NORMAL", "TANGENT"}) {
+                    auto a = p.attributes.find(name);
+                    if (a != p.attributes.end())
+                        attribute_meshes[a->second].insert((int)mesh);
+                }
+            }
+        for (size_t mesh = 0; mesh < m.meshes.size(); ++mesh) {
+            Unit u;
+            std::map<int, uint32_t> bases;
+            std::vector<PrimitiveTriangles> prims;
+            std::vector<NormalSlot> slots;
+            u.name = m.meshes[mesh].name.empty() ? "mesh " + std::to_string(mesh) : "mesh " + std::to_string(mesh) + " '" + m.meshes[mesh].name + "'";
+            for (size_t p = 0; p < m.meshes[mesh].primitives.size(); ++p)
+                if (!add_primitive((int)mesh, (int)p, u, bases, prims)) {
+                    error = u.name + ", primitive " + std::to_string(p) + ": " + error;
+                    return false;
+                }
+            if (u.indices.empty())
+                continue;
+            u.face_count = u.indices.size() / 3;
+            for (size_t t = 0; t < u.face_count; ++t)
+                u.triangle_face.push_back((uint32_t)t);
+            find_flat_normals((int)mesh, u, prims, slots);
+            file.units.push_back(std::move(u));
+            file.unit_primitives.push_back(std::move(prims));
+            file.unit_slots.push_back(std::move(slots));
+        }
+        return true;
+    }
+};
+
+/* Nodes that draw a mesh under a transform of negative determinant. The
+   sign of a product's determinant is the product of the signs, so only
+   each node's own sign is needed. */
+void find_mirrored(GltfFile &file)
+{
+    const tinygltf::Model &m = file.model;
+    std::vector<int> parent(m.nodes.size(), -1);
+    for (size_t n = 0; n < m.nodes.size(); ++n)
+        for (int c : m.nodes[n].children)
+            if (c >= 0 && (size_t)c < m.nodes.size() && parent[(size_t)c] < 0 && (size_t)c != n)
+                parent[(size_t)c] = (int)n;
+    auto own_sign = [&](const tinygltf::Node &node) {
+        double det;
+        if (node.matrix.size() == 16) {
+            const std::vector<double> &a = node.matrix; /* column-major */
+            det = a[0] * (a[5] * a[10] - a[9] * a[6]) - a[4] * (a[1] * a[10] - a[9] * a[2]) + a[8] * (a[1] * a[6] - a[5] * a[2]);
+        } else {
+            det = node.scale.size() == 3 ? node.scale[0] * node.scale[1] * node.scale[2] : 1.0;
+        }
+        return det < 0 ? -1 : 1;
+    };
+    for (size_t n = 0; n < m.nodes.size(); ++n) {
+        if (m.nodes[n].mesh < 0)
+            continue;
+        int sign = 1;
+        size_t steps = 0;
+        for (int at = (int)n; at >= 0 && steps <= m.nodes.size(); at = parent[(size_t)at], ++steps)
+            sign *= own_sign(m.nodes[(size_t)at]);
+        if (sign < 0)
+            file.mirrored.push_back({(int)n, m.nodes[n].mesh});
+    }
+    std::set<int> used;
+    for (const tinygltf::Mesh &mesh : m.meshes)
+        for (const tinygltf::Primitive &p : mesh.primitives)
+            if (is_triangles(primitive_mode(p)) && p.material >= 0 && (size_t)p.material < m.materials.size() &&
+                m.materials[(size_t)p.material].doubleSided)
+                used.insert(p.material);
+    file.double_sided.assign(used.begin(), used.end());
+}
+
+/* Images are never decoded: the loader keeps the encoded bytes (a data URI
+   is written back from them). */
+bool keep_image_bytes(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
+                      const unsigned char *bytes, int size, void *)
+{
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+std::string base64(const std::vector<unsigned char> &data)
+{
+    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < data.size(); i += 3) {
+        unsigned v = (unsigned)data[i] << 16 | (i + 1 < data.size() ? (unsigned)data[i + 1] << 8 : 0) |
+                     (i + 2 < data.size() ? data[i + 2] : 0);
+        out += digits[v >> 18 & 63];
+        out += digits[v >> 12 & 63];
+        out += i + 1 < data.size() ? digits[v >> 6 & 63] : '=';
+        out += i + 2 < data.size() ? digits[v & 63] : '=';
+    }
+    return out;
+}
+
+/* An image from a data URI goes back as one; external files keep their
+   uri (the tool copies them); bufferView images are written by tinygltf. */
+bool write_image_uri(const std::string *, const std::string *, const tinygltf::Image *image, bool, std::string *uri, void *)
+{
+    if (!image->uri.empty() || image->bufferView >= 0)
+        return false;
+    *uri = "data:" + (image->mimeType.empty() ? std::string("application/octet-stream") : image->mimeType) + ";base64," +
+           base64(image->image);
+    return true;
+}
+
+bool data_uri(const std::string &uri) { return uri.compare(0, 5, "data:") == 0; }
+
+/* ---- writing ---- */
+
+/* Puts `values` into the accessor's own bytes, in its component type. */
+void write_indices_in_place(tinygltf::Model &m, int accessor, const std::vector<uint32_t> &values)
+{
+    const tinygltf::Accessor &a = m.accessors[(size_t)accessor];
+    tinygltf::BufferView &v = m.bufferViews[(size_t)a.bufferView];
+    size_t size = component_size(a.componentType), stride = v.byteStride != 0 ? v.byteStride : size;
+    unsigned char *base = m.buffers[(size_t)v.buffer].data.data() + v.byteOffset + a.byteOffset;
+    for (size_t i = 0; i < values.size(); ++i) {
+        uint32_t x = values[i];
+        if (size == 1)
+            base[i * stride] = (unsigned char)x;
+        else if (size == 2) {
+            uint16_t s = (uint16_t)x;
+            std::memcpy(base + i * stride, &s, 2);
+        } else
+            std::memcpy(base + i * stride, &x, 4);
+    }
+}
+
+/* A new index accessor (in its own bufferView at the end of buffer 0)
+   holding `values`; returns its index. */
+int add_index_accessor(tinygltf::Model &m, const std::vector<uint32_t> &values, int component_type)
+{
+    if (m.buffers.empty())
+        m.buffers.emplace_back();
+    std::vector<unsigned char> &data = m.buffers[0].data;
+    while (data.size() % 4 != 0)
+        data.push_back(0);
+    size_t size = component_size(component_type), offset = data.size();
+    data.resize(offset + size * values.size());
+    for (size_t i = 0; i < values.size(); ++i) {
+        uint32_t x = values[i];
+        if (size == 1)
+            data[offset + i] = (unsigned char)x;
+        else if (size == 2) {
+            uint16_t s = (uint16_t)x;
+            std::memcpy(&data[offset + 2 * i], &s, 2);
+        } else
+            std::memcpy(&data[offset + 4 * i], &x, 4);
+    }
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = offset;
+    view.byteLength = size * values.size();
+    view.target = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
+    m.bufferViews.push_back(view);
+    tinygltf::Accessor a;
+    a.bufferView = (int)m.bufferViews.size() - 1;
+    a.byteOffset = 0;
+    a.componentType = component_type;
+    a.count = values.size();
+    a.type = TINYGLTF_TYPE_SCALAR;
+    m.accessors.push_back(a);
+    return (int)m.accessors.size() - 1;
+}
+
+/* Whether another accessor reads any byte of this one's. */
+bool aliased(const tinygltf::Model &m, int accessor)
+{
+    const tinygltf::Accessor &a = m.accessors[(size_t)accessor];
+    size_t begin = a.byteOffset, end = begin + a.count * component_size(a.componentType);
+    for (size_t i = 0; i < m.accessors.size(); ++i) {
+        const tinygltf::Accessor &b = m.accessors[i];
+        if ((int)i == accessor || b.bufferView != a.bufferView)
+            continue;
+        size_t b_begin = b.byteOffset, b_end = b_begin + b.count * component_size(b.componentType) * (size_t)std::max(components(b.type), 1);
+        if (b_begin < end && begin < b_end)
+            return true;
+    }
+    return false;
+}
+
+void negate_floats(tinygltf::Model &m, int accessor, uint32_t element, int first, int count)
+{
+    const tinygltf::Accessor &a = m.accessors[(size_t)accessor];
+    const tinygltf::BufferView &v = m.bufferViews[(size_t)a.bufferView];
+    size_t size = 4 * (size_t)components(a.type), stride = v.byteStride != 0 ? v.byteStride : size;
+    unsigned char *p = m.buffers[(size_t)v.buffer].data.data() + v.byteOffset + a.byteOffset + element * stride;
+    for (int k = first; k < first + count; ++k) {
+        float f;
+        std::memcpy(&f, p + 4 * k, 4);
+        if (f != 0.0f) /* -0 would change bytes and nothing else */
+            f = -f;
+        std::memcpy(p + 4 * k, &f, 4);
+    }
+}
+
+} // namespace
+
+void GltfFile::apply(size_t unit, const Changes &changes)
+{
+    for (PrimitiveTriangles &pt : unit_primitives[unit]) {
+        size_t n = pt.corners.size() / 3;
+        std::vector<uint32_t> list = pt.corners;
+        bool any = false;
+        for (size_t t = 0; t < n; ++t)
+            if (changes.face_flipped[pt.first_triangle + t]) {
+                std::swap(list[3 * t + 1], list[3 * t + 2]);
+                any = true;
+            }
+        if (!any)
+            continue;
+        changed = true;
+        tinygltf::Primitive &p = model.meshes[(size_t)pt.mesh].primitives[(size_t)pt.primitive];
+        int mode = primitive_mode(p);
+        if (mode == TINYGLTF_MODE_TRIANGLES && p.indices >= 0 && index_uses[(size_t)p.indices] == 1 &&
+            !model.accessors[(size_t)p.indices].sparse.isSparse && model.accessors[(size_t)p.indices].bufferView >= 0 &&
+            !aliased(model, p.indices)) {
+            write_indices_in_place(model, p.indices, list);
+            continue;
+        }
+        uint32_t highest = 0;
+        for (uint32_t v : list)
+            highest = std::max(highest, v);
+        int type = p.indices >= 0 ? model.accessors[(size_t)p.indices].componentType
+                   : highest < 65535 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+        if (mode != TINYGLTF_MODE_TRIANGLES)
+            ++lists_written;
+        else if (p.indices < 0)
+            ++indices_added;
+        else
+            ++accessors_cloned;
+        p.indices = add_index_accessor(model, list, type);
+        p.mode = TINYGLTF_MODE_TRIANGLES;
+    }
+    for (size_t k = 0; k < unit_slots[unit].size(); ++k) {
+        if (!changes.negate_flat[k])
+            continue;
+        const NormalSlot &s = unit_slots[unit][k];
+        negate_floats(model, s.normal, s.element, 0, 3);
+        ++normals_negated;
+        if (s.tangent >= 0 && s.element < model.accessors[(size_t)s.tangent].count) {
+            negate_floats(model, s.tangent, s.element, 3, 1); /* the bitangent keeps its direction */
+            ++tangents_negated;
+        }
+        changed = true;
+    }
+}
+
+std::vector<std::string> GltfFile::companions() const
+{
+    std::vector<std::string> files;
+    for (const tinygltf::Buffer &b : model.buffers)
+        if (!b.uri.empty() && !data_uri(b.uri))
+            files.push_back(b.uri);
+    for (const tinygltf::Image &i : model.images)
+        if (!i.uri.empty() && !data_uri(i.uri))
+            files.push_back(i.uri);
+    return files;
+}
+
+namespace {
+
+void mkdir_one(const std::string &directory) { mkdir(directory.c_str(), 0777); }
+
+bool safe_relative(const std::string &uri)
+{
+    return !uri.empty() && uri[0] != '/' && uri.find("..") == std::string::npos && uri.find(':') == std::string::npos &&
+           uri.find('\\') == std::string::npos;
+}
+
+std::string out_dir_of_target(const std::string &target) { return directory_of(target); }
+
+bool same_directory(const std::string &a, const std::string &b)
+{
+    struct stat sa, sb;
+    return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+bool copy_file(const std::string &from, const std::string &to, std::string &error)
+{
+    std::string data;
+    if (!read_file(from, data, error))
+        return false;
+    for (size_t slash = to.find('/', 1); slash != std::string::npos; slash = to.find('/', slash + 1))
+        mkdir_one(to.substr(0, slash));
+    return write_bytes(to, data, error);
+}
+
+} // namespace
+
+bool GltfFile::write(const std::string &out, const std::string &target, std::string &error)
+{
+    std::string in_dir = directory_of(path), out_dir = directory_of(out);
+    bool to_binary = target.size() >= 4 && (target.compare(target.size() - 4, 4, ".glb") == 0 ||
+                                            target.compare(target.size() - 4, 4, ".GLB") == 0);
+    for (const std::string &uri : companions())
+        if (!safe_relative(uri)) {
+            error = path + ": refers to '" + uri + "' outside its directory: not written";
+            return false;
+        }
+    /* images are never rewritten: copy the external ones beside the output */
+    for (const tinygltf::Image &i : model.images)
+        if (!i.uri.empty() && !data_uri(i.uri) && !copy_file(in_dir + "/" + i.uri, out_dir + "/" + i.uri, error))
+            return false;
+    if (!changed && to_binary == binary) {
+        for (const tinygltf::Buffer &b : model.buffers)
+            if (!b.uri.empty() && !data_uri(b.uri) && !copy_file(in_dir + "/" + b.uri, out_dir + "/" + b.uri, error))
+                return false;
+        return write_bytes(out, raw, error);
+    }
+    tinygltf::Model copy = model;
+    /* a new name beside the input: its changed buffers must not overwrite
+       the input's */
+    if (changed && same_directory(in_dir, out_dir_of_target(target)) && base_name(target) != base_name(path)) {
+        std::string stem = base_name(target).substr(0, base_name(target).rfind('.'));
+        for (size_t i = 0; i < copy.buffers.size(); ++i)
+            if (!copy.buffers[i].uri.empty() && !data_uri(copy.buffers[i].uri))
+                copy.buffers[i].uri = stem + (i ? std::to_string(i) : "") + ".bin";
+    }
+    if (to_binary && !copy.buffers.empty() && !data_uri(copy.buffers[0].uri))
+        copy.buffers[0].uri.clear(); /* the first buffer becomes the GLB's BIN chunk */
+    bool embed = true;
+    for (const tinygltf::Buffer &b : copy.buffers)
+        embed &= data_uri(b.uri);
+    for (const tinygltf::Buffer &b : copy.buffers)
+        if (!b.uri.empty() && !data_uri(b.uri))
+            for (size_t slash = b.uri.find('/'); slash != std::string::npos; slash = b.uri.find('/', slash + 1))
+                mkdir_one(out_dir + "/" + b.uri.substr(0, slash));
+    tinygltf::TinyGLTF writer;
+    writer.SetImageWriter(write_image_uri, nullptr);
+    if (!writer.WriteGltfSceneToFile(&copy, out, false, embed && !to_binary, true, to_binary)) {
+        error = "cannot write '" + target + "'";
+        return false;
+    }
+    return true;
+}
+
+std::vector<std::string> GltfFile::notes() const
+{
+    std::vector<std::string> lines;
+    for (const auto &nm : mirrored) {
+        const tinygltf::Node &node = model.nodes[(size_t)nm.first];
+        lines.push_back("note: node " + std::to_string(nm.first) + (node.name.empty() ? "" : " '" + node.name + "'") +
+                        " draws mesh " + std::to_string(nm.second) +
+                        " mirrored (negative determinant): glTF reverses its winding there; left as it is");
+    }
+    for (int m : double_sided)
+        lines.push_back("note: material " + std::to_string(m) +
+                        (model.materials[(size_t)m].name.empty() ? "" : " '" + model.materials[(size_t)m].name + "'") +
+                        " is double-sided: back faces are drawn, so wrong winding may not show; left as it is");
+    if (accessors_cloned + lists_written + indices_added != 0)
+        lines.push_back("note: " + std::to_string(accessors_cloned) + " shared index accessors cloned, " +
+                        std::to_string(lists_written) + " strips or fans written as triangle lists, " +
+                        std::to_string(indices_added) + " non-indexed primitives given indices");
+    if (normals_negated != 0)
+        lines.push_back("note: " + std::to_string(normals_negated) + " NORMAL and " + std::to_string(tangents_negated) +
+                        " TANGENT.w values negated");
+    return lines;
+}
+
+std::string GltfFile::json_members() const
+{
+    std::string s = ",\"gltf\":{\"mirrored_nodes\":[";
+    for (size_t i = 0; i < mirrored.size(); ++i)
+        s += (i ? "," : "") + std::string("{\"node\":") + std::to_string(mirrored[i].first) + ",\"mesh\":" +
+             std::to_string(mirrored[i].second) + "}";
+    s += "],\"double_sided_materials\":[";
+    for (size_t i = 0; i < double_sided.size(); ++i)
+        s += (i ? "," : "") + std::to_string(double_sided[i]);
+    s += "],\"index_accessors_cloned\":" + std::to_string(accessors_cloned) +
+         ",\"strips_fans_as_lists\":" + std::to_string(lists_written) +
+         ",\"indices_added\":" + std::to_string(indices_added) + ",\"normals_negated\":" + std::to_string(normals_negated) +
+         ",\"tangents_negated\":" + std::to_string(tangents_negated) + "}";
+    return s;
+}
+
+std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error)
+{
+    std::unique_ptr<GltfFile> file(new GltfFile);
+    file->path = path;
+    if (!read_file(path, file->raw, error))
+        return nullptr;
+    file->binary = file->raw.compare(0, 4, "glTF") == 0;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keep_image_bytes, nullptr);
+    std::string err, warn;
+    bool ok = file->binary ? loader.LoadBinaryFromMemory(&file->model, &err, &warn, (const unsigned char *)file->raw.data(),
+                                                         (unsigned)file->raw.size(), directory_of(path))
+                           : loader.LoadASCIIFromString(&file->model, &err, &warn, file->raw.data(),
+                                                        (unsigned)file->raw.size(), directory_of(path));
+    if (!ok) {
+        /* tinygltf refuses most compressed files itself (their accessors
+           have no bufferView): say why, from the extension's name */
+        for (const char *name : compression_extensions)
+            if (file->raw.find(name) != std::string::npos) {
+                error = compression_message(name);
+                return nullptr;
+            }
+        size_t end = err.find('\n');
+        error = "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf refused it") : err.substr(0, end));
+        return nullptr;
+    }
+    std::string compression = compression_of(file->model);
+    if (!compression.empty()) {
+        error = compression_message(compression);
+        return nullptr;
+    }
+    MeshReader reader{*file, error, {}};
+    if (!reader.read())
+        return nullptr;
+    find_mirrored(*file);
+    return file;
+}
+
+#endif
+
+} // namespace tool

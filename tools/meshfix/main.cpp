@@ -1,0 +1,505 @@
+/* meshfix - command-line winding repair for asset pipelines, built on meshfix.h
+
+   Reads OBJ, OFF, STL, PLY and glTF 2.0 (.gltf, .glb), repairs the winding
+   and writes the file back as it was except the faces that flipped (and
+   the normals --fix-normals negates). `meshfix --help` lists the options;
+   README.md ("Command-line tool") has the exit statuses and the --json
+   schema. */
+#include "tool.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <dirent.h>
+#include <mutex>
+#include <sys/stat.h>
+#include <thread>
+#include <unistd.h>
+
+namespace tool {
+namespace {
+
+const char *const usage_text =
+    "usage: meshfix [OPTIONS] INPUT OUTPUT          repair one file\n"
+    "       meshfix [OPTIONS] INPUT... -o DIRECTORY  repair files and directories into DIRECTORY\n"
+    "       meshfix --inspect|--check [OPTIONS] INPUT...\n"
+    "\n"
+    "Formats: .obj .off .stl .ply .gltf .glb. The output keeps everything the repair does not\n"
+    "change; another format than the input's (OBJ, OFF, STL, PLY) gets positions and faces only.\n"
+    "\n"
+    "  --policy P        auto (default), seed, majority, outward, visibility, up, normals\n"
+    "  --up AXIS         x, y, z, -x, -y or -z: the axis of --policy up (default z)\n"
+    "  --weld TOLERANCE  treat vertices closer than TOLERANCE as one (soups, CAD exports)\n"
+    "  --fix-normals     negate flat normals (used by one face) that point away from their face\n"
+    "  --mark FILE.ply   also write the mesh with face colours: flipped red, doubtful amber;\n"
+    "                    with several inputs, a directory for one FILE.ply per input\n"
+    "  --inspect         report only; with --mark, mark what a repair would flip\n"
+    "  --check           --inspect, and exit status 3 when something is wrong (CI)\n"
+    "  --json            print the report as JSON on stdout instead of text\n"
+    "  -o, --output-dir DIRECTORY   where several inputs go (created if missing)\n"
+    "  -j, --jobs N      files repaired at once (default: one per core)\n"
+    "  --progress        a progress line on stderr (on by default when stderr is a terminal)\n"
+    "  --quiet           no report on stdout\n"
+    "  --help, --version\n"
+    "\n"
+    "Exit status: 0 clean or repaired; 1 bad arguments, or a file could not be read or written;\n"
+    "2 the library refused a mesh; 3 (--check) something is wrong.\n";
+
+/* The command line, checked whole before any file is read. */
+struct CommandLine {
+    Settings settings;
+    std::vector<std::string> inputs;
+    std::string output, output_dir, mark;
+};
+
+int fail_usage(const std::string &message)
+{
+    std::fprintf(stderr, "meshfix: %s\n", message.c_str());
+    return 1;
+}
+
+bool parse_policy(const std::string &name, Settings &s)
+{
+    static const struct {
+        const char *name;
+        meshfix_policy policy;
+    } policies[] = {{"auto", MESHFIX_POLICY_AUTO},     {"seed", MESHFIX_POLICY_SEED},
+                    {"majority", MESHFIX_POLICY_MAJORITY}, {"outward", MESHFIX_POLICY_OUTWARD},
+                    {"visibility", MESHFIX_POLICY_VISIBILITY}, {"up", MESHFIX_POLICY_UP},
+                    {"normals", MESHFIX_POLICY_NORMALS}};
+    for (const auto &p : policies)
+        if (name == p.name) {
+            s.policy = p.policy;
+            s.policy_name = name;
+            return true;
+        }
+    return false;
+}
+
+bool parse_up(const std::string &name, Settings &s)
+{
+    static const char *const axes[] = {"x", "y", "z", "-x", "-y", "-z", "+x", "+y", "+z"};
+    for (int i = 0; i < 9; ++i)
+        if (name == axes[i]) {
+            int axis = i % 3;
+            s.up[0] = s.up[1] = s.up[2] = 0.0f;
+            s.up[axis] = i >= 3 && i < 6 ? -1.0f : 1.0f;
+            s.up_name = name;
+            return true;
+        }
+    return false;
+}
+
+/* Returns -1 when the command line is good, else the exit status (after
+   printing help, the version or a one-line error). */
+int parse(int argc, char **argv, CommandLine &c)
+{
+    std::vector<std::string> positional;
+    Settings &s = c.settings;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        auto value = [&](std::string &out) {
+            if (i + 1 >= argc)
+                return false;
+            out = argv[++i];
+            return true;
+        };
+        std::string v;
+        if (a == "--help" || a == "-h") {
+            std::fputs(usage_text, stdout);
+            return 0;
+        } else if (a == "--version") {
+            std::printf("meshfix %d.%d.%d (meshfix.h %d.%d.%d; glTF through tinygltf)\n", MESHFIX_VERSION_MAJOR,
+                        MESHFIX_VERSION_MINOR, MESHFIX_VERSION_PATCH, MESHFIX_VERSION_MAJOR, MESHFIX_VERSION_MINOR,
+                        MESHFIX_VERSION_PATCH);
+            return 0;
+        } else if (a == "--policy") {
+            if (!value(v) || !parse_policy(v, s))
+                return fail_usage("unknown policy '" + v + "' (auto, seed, majority, outward, visibility, up, normals)");
+        } else if (a == "--up") {
+            if (!value(v) || !parse_up(v, s))
+                return fail_usage("--up takes x, y, z, -x, -y or -z, not '" + v + "'");
+        } else if (a == "--weld") {
+            char *end = nullptr;
+            if (value(v))
+                s.weld_tolerance = std::strtof(v.c_str(), &end);
+            if (end == nullptr || *end != 0 || v.empty() || !(s.weld_tolerance >= 0.0f && s.weld_tolerance < 1e30f))
+                return fail_usage("--weld takes a tolerance >= 0, not '" + v + "'");
+        } else if (a == "--mark") {
+            if (!value(c.mark))
+                return fail_usage("--mark needs a file name");
+        } else if (a == "-o" || a == "--output-dir") {
+            if (!value(c.output_dir))
+                return fail_usage(a + " needs a directory");
+        } else if (a == "-j" || a == "--jobs") {
+            char *end = nullptr;
+            long n = value(v) ? std::strtol(v.c_str(), &end, 10) : 0;
+            if (end == nullptr || *end != 0 || v.empty() || n < 1 || n > 256)
+                return fail_usage(a + " takes a number of files from 1 to 256, not '" + v + "'");
+            s.jobs = (unsigned)n;
+        } else if (a == "--fix-normals") {
+            s.fix_normals = true;
+        } else if (a == "--inspect") {
+            s.inspect = true;
+        } else if (a == "--check") {
+            s.inspect = s.check = true;
+        } else if (a == "--json") {
+            s.json = true;
+        } else if (a == "--quiet" || a == "-q") {
+            s.quiet = true;
+        } else if (a == "--progress") {
+            s.progress = true;
+        } else if (a.size() > 1 && a[0] == '-') {
+            return fail_usage("unknown option '" + a + "' (meshfix --help lists them)");
+        } else {
+            positional.push_back(a);
+        }
+    }
+    if (positional.empty())
+        return fail_usage("no input (meshfix --help)");
+    if (!s.inspect && c.output_dir.empty()) {
+        if (positional.size() != 2)
+            return fail_usage(positional.size() == 1 ? "no output: give INPUT OUTPUT, -o DIRECTORY or --inspect"
+                                                     : "several inputs go to a directory: -o DIRECTORY");
+        c.output = positional[1];
+        positional.pop_back();
+    }
+    c.inputs = positional;
+    return -1;
+}
+
+/* ---- the jobs ---- */
+
+/* Mesh files under a directory, sorted, recursively. */
+void collect(const std::string &directory, const std::string &relative, std::vector<std::pair<std::string, std::string>> &out)
+{
+    DIR *d = opendir(directory.c_str());
+    if (d == nullptr)
+        return;
+    std::vector<std::string> names;
+    while (struct dirent *e = readdir(d))
+        if (e->d_name[0] != '.')
+            names.push_back(e->d_name);
+    closedir(d);
+    std::sort(names.begin(), names.end());
+    for (const std::string &name : names) {
+        std::string path = directory + "/" + name;
+        if (is_directory(path))
+            collect(path, relative + name + "/", out);
+        else if (!format_of(name).empty())
+            out.push_back({path, relative + name});
+    }
+}
+
+bool gltf_format(const std::string &f) { return f == "gltf" || f == "glb"; }
+
+/* The jobs of the command line, every argument checked; false after a
+   one-line message. */
+bool plan(const CommandLine &c, std::vector<Job> &jobs)
+{
+    bool batch = !c.output_dir.empty() || c.inputs.size() > 1;
+    for (const std::string &input : c.inputs) {
+        std::vector<std::pair<std::string, std::string>> files;
+        if (is_directory(input)) {
+            if (!batch && !c.settings.inspect)
+                return fail_usage("'" + input + "' is a directory: repair it into another with -o DIRECTORY") , false;
+            collect(input, "", files);
+            if (files.empty())
+                return fail_usage("'" + input + "' is a directory with no mesh files in it"), false;
+        } else {
+            if (format_of(input).empty())
+                return fail_usage("'" + input + "': unknown format (use .obj, .off, .stl, .ply, .gltf or .glb)"), false;
+            files.push_back({input, base_name(input)});
+        }
+        for (const auto &f : files) {
+            Job job;
+            job.input = f.first;
+            job.name = f.first;
+            if (!c.settings.inspect)
+                job.output = batch ? c.output_dir + "/" + f.second : c.output;
+            if (!c.mark.empty())
+                job.mark = batch ? c.mark + "/" + f.second + ".ply" : c.mark;
+            jobs.push_back(std::move(job));
+        }
+    }
+    std::string error;
+    if (!c.output.empty()) {
+        std::string in = format_of(c.inputs[0]), out = format_of(c.output);
+        if (out.empty())
+            return fail_usage("unknown output format '" + c.output + "' (use .obj, .off, .stl, .ply, .gltf or .glb)"), false;
+        if (gltf_format(out) && !gltf_format(in))
+            return fail_usage("glTF output needs a glTF input ('" + c.output + "')"), false;
+        if (!check_target(c.output, error))
+            return fail_usage(error), false;
+    }
+    if (!c.output_dir.empty() && !is_directory(c.output_dir)) {
+        std::string parent = directory_of(c.output_dir);
+        if (!is_directory(parent) || access(parent.c_str(), W_OK) != 0)
+            return fail_usage("cannot make the output directory '" + c.output_dir + "'"), false;
+    }
+    if (!c.mark.empty()) {
+        if (batch && !is_directory(c.mark))
+            return fail_usage("with several inputs, --mark names an existing directory ('" + c.mark + "')"), false;
+        if (!batch && format_of(c.mark) != "ply")
+            return fail_usage("--mark writes PLY (face colours): give a .ply file"), false;
+        if (!batch && !check_target(c.mark, error))
+            return fail_usage(error), false;
+    }
+    return true;
+}
+
+/* mkdir -p of the directory a file goes into. */
+void make_parents(const std::string &file)
+{
+    std::string d = directory_of(file);
+    for (size_t slash = 1; slash != std::string::npos; slash = d.find('/', slash + 1))
+        mkdir(d.substr(0, slash).c_str(), 0777);
+    mkdir(d.c_str(), 0777);
+}
+
+bool write_outputs(Job &job, const Settings &s)
+{
+    OutputSet outputs;
+    std::string error, in = job.file->format(), out = job.output.empty() ? "" : format_of(job.output);
+    bool ok = true;
+    if (!job.output.empty()) {
+        make_parents(job.output);
+        std::string path = outputs.reserve(job.output, error);
+        bool same = in == out || (gltf_format(in) && gltf_format(out));
+        ok = !path.empty() && (same ? job.file->write(path, job.output, error)
+                                    : write_triangles(path, *job.file, job.results, false, error));
+    }
+    if (ok && !job.mark.empty()) {
+        make_parents(job.mark);
+        std::string path = outputs.reserve(job.mark, error);
+        ok = !path.empty() && write_triangles(path, *job.file, job.results, true, error);
+    }
+    if (ok)
+        ok = outputs.commit(error);
+    job.written = outputs.written;
+    if (!ok) {
+        job.exit = 1;
+        job.error = error;
+    }
+    (void)s;
+    return ok;
+}
+
+} // namespace
+
+void run_job(Job &job, const Settings &s)
+{
+    job.file = load_file(job.input, job.error);
+    if (!job.file) {
+        job.error = job.input + ": " + job.error;
+        job.exit = 1;
+        return;
+    }
+    for (size_t i = 0; i < job.file->units.size(); ++i) {
+        job.results.push_back(repair_unit(job.file->units[i], s));
+        const UnitResult &r = job.results.back();
+        if (r.status != MESHFIX_OK && job.exit == 0) {
+            std::string where = job.file->units[i].name.empty() ? "" : " (" + job.file->units[i].name + ")";
+            job.error = job.input + where + ": " + meshfix_result_string(r.status);
+            job.exit = 2;
+        }
+    }
+    if (job.exit != 0)
+        return;
+    if (!s.inspect)
+        for (size_t i = 0; i < job.file->units.size(); ++i)
+            job.file->apply(i, job.results[i].changes);
+    if (!write_outputs(job, s))
+        return;
+    if (s.check && something_wrong(job))
+        job.exit = 3;
+}
+
+namespace {
+
+/* The jobs on worker threads; main prints each job's report in input
+   order as soon as it and those before it are done. */
+class Runner {
+public:
+    Runner(std::vector<Job> &all, const Settings &settings) : jobs(all), s(settings), done(all.size(), 0) {}
+
+    void run(unsigned threads, bool progress)
+    {
+        std::vector<std::thread> workers;
+        for (unsigned t = 0; t < threads; ++t)
+            workers.emplace_back([this] { work(); });
+        std::thread reporter;
+        if (progress)
+            reporter = std::thread([this] { report_progress(); });
+        for (std::thread &w : workers)
+            w.join();
+        {
+            std::lock_guard<std::mutex> lock(mutex);
+            finished = true;
+        }
+        changed.notify_all();
+        if (reporter.joinable())
+            reporter.join();
+    }
+
+    /* Blocks until job i is done. */
+    void wait(size_t i)
+    {
+        std::unique_lock<std::mutex> lock(mutex);
+        changed.wait(lock, [&] { return done[i] != 0; });
+    }
+
+private:
+    void work()
+    {
+        for (;;) {
+            size_t i = next++;
+            if (i >= jobs.size())
+                return;
+            run_job(jobs[i], s);
+            {
+                std::lock_guard<std::mutex> lock(mutex);
+                done[i] = 1;
+                ++count;
+            }
+            changed.notify_all();
+        }
+    }
+
+    /* After the first second, a line on stderr each second: files done of
+       all, and what is being worked on. */
+    void report_progress()
+    {
+        bool terminal = isatty(2) != 0, shown = false;
+        auto start = std::chrono::steady_clock::now();
+        std::unique_lock<std::mutex> lock(mutex);
+        while (!finished) {
+            changed.wait_for(lock, std::chrono::milliseconds(250));
+            if (finished || std::chrono::steady_clock::now() - start < std::chrono::seconds(1))
+                continue;
+            size_t working = std::min(next.load(), jobs.size());
+            std::string current = working > 0 && working - 1 < jobs.size() ? jobs[working - 1].name : "";
+            std::fprintf(stderr, "%smeshfix: %zu of %zu files done; working on %s%s", terminal ? "\r\033[K" : "", count,
+                         jobs.size(), current.c_str(), terminal ? "" : "\n");
+            std::fflush(stderr);
+            shown = true;
+            start += std::chrono::seconds(1);
+        }
+        if (shown && terminal)
+            std::fprintf(stderr, "\r\033[K");
+    }
+
+    std::vector<Job> &jobs;
+    const Settings &s;
+    std::vector<char> done;
+    std::atomic<size_t> next{0};
+    size_t count = 0;
+    bool finished = false;
+    std::mutex mutex;
+    std::condition_variable changed;
+};
+
+/* The first status that applies, in the order 1, 2, 3, else 0. */
+int overall_exit(const std::vector<Job> &jobs)
+{
+    for (int status : {1, 2, 3})
+        for (const Job &j : jobs)
+            if (j.exit == status)
+                return status;
+    return 0;
+}
+
+std::string table_row(const Job &j, const Settings &s)
+{
+    meshfix_report r = combined_report(j.results, true);
+    size_t triangles = 0, disagree = 0;
+    for (size_t i = 0; i < j.results.size(); ++i) {
+        triangles += j.file->units[i].indices.size() / 3;
+        disagree += j.results[i].normals_disagree;
+    }
+    char row[512];
+    std::snprintf(row, sizeof(row), "%-40s %10zu %9zu %8zu %9zu %8zu  %s", j.name.c_str(), triangles,
+                  r.triangles_flipped, r.patches_flipped, r.patches_doubtful, disagree,
+                  j.exit == 1 || j.exit == 2 ? "failed" : s.inspect ? meshfix_verdict_string(combined_report(j.results, false).verdict)
+                                                               : meshfix_verdict_string(r.verdict));
+    return row;
+}
+
+void print_table(const std::vector<Job> &jobs, const Settings &s)
+{
+    std::printf("\n%-40s %10s %9s %8s %9s %8s  %s\n", "file", "triangles", s.inspect ? "to flip" : "flipped", "patches",
+                "doubtful", "normals", "result");
+    size_t clean = 0, repaired = 0, doubtful = 0, failed = 0, wrong = 0;
+    for (const Job &j : jobs) {
+        std::printf("%s\n", table_row(j, s).c_str());
+        if (j.exit == 1 || j.exit == 2) {
+            ++failed;
+            continue;
+        }
+        meshfix_report r = combined_report(j.results, true);
+        wrong += something_wrong(j);
+        if (r.verdict == MESHFIX_VERDICT_DOUBTFUL || r.verdict == MESHFIX_VERDICT_NOT_ORIENTABLE)
+            ++doubtful;
+        else if (r.triangles_flipped != 0)
+            ++repaired;
+        else
+            ++clean;
+    }
+    if (s.inspect)
+        std::printf("%zu files: %zu with nothing wrong, %zu with something to repair, %zu could not be inspected\n",
+                    jobs.size(), jobs.size() - wrong - failed, wrong, failed);
+    else
+        std::printf("%zu files: %zu clean, %zu repaired, %zu doubtful or not orientable, %zu failed\n", jobs.size(),
+                    clean, repaired, doubtful, failed);
+}
+
+} // namespace
+} // namespace tool
+
+int main(int argc, char **argv)
+{
+    using namespace tool;
+    CommandLine c;
+    int status = parse(argc, argv, c);
+    if (status >= 0)
+        return status;
+    std::vector<Job> jobs;
+    if (!plan(c, jobs))
+        return 1;
+    const Settings &s = c.settings;
+    bool batch = jobs.size() > 1 || !c.output_dir.empty();
+    if (!c.output_dir.empty())
+        make_parents(c.output_dir + "/.");
+    unsigned threads = s.jobs != 0 ? s.jobs : std::max(1u, std::thread::hardware_concurrency());
+    threads = std::min<unsigned>(threads, (unsigned)jobs.size());
+    Runner runner(jobs, s);
+    std::thread pool([&] { runner.run(threads, s.progress || (batch && isatty(2))); });
+    if (s.json)
+        std::printf("{\"meshfix\":\"%d.%d.%d\",\"mode\":\"%s\",\"policy\":%s,\"files\":[", MESHFIX_VERSION_MAJOR,
+                    MESHFIX_VERSION_MINOR, MESHFIX_VERSION_PATCH, s.check ? "check" : s.inspect ? "inspect" : "repair",
+                    json_string(s.policy_name).c_str());
+    for (size_t i = 0; i < jobs.size(); ++i) {
+        runner.wait(i);
+        const Job &j = jobs[i];
+        if (j.exit == 1 || j.exit == 2)
+            std::fprintf(stderr, "meshfix: %s\n", j.error.c_str());
+        if (s.json)
+            std::printf("%s%s", i ? "," : "", json_report(j, s).c_str());
+        else if (!s.quiet && batch)
+            std::printf("%s: %s\n", j.name.c_str(), summary_line(j, s).c_str());
+        else if (!s.quiet && j.exit != 1 && j.exit != 2)
+            std::printf("%s%s\n", text_report(j, s).c_str(), summary_line(j, s).c_str());
+        std::fflush(stdout);
+    }
+    pool.join();
+    status = overall_exit(jobs);
+    if (s.json)
+        std::printf("],\"exit\":%d}\n", status);
+    else if (!s.quiet && batch)
+        print_table(jobs, s);
+    return status;
+}

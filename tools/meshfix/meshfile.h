@@ -1,0 +1,91 @@
+/* meshfix command-line tool: what every file format gives the repair, and
+   what the repair gives back.
+
+   A file is read into one or more units (glTF: one per mesh; other formats:
+   one), each the triangles the library decides on. A polygon is one face
+   of one or more triangles, so it is flipped whole; the format then
+   rewrites only the faces (and normals) that changed and passes every other
+   byte through. */
+#ifndef MESHFIX_TOOL_MESHFILE_H
+#define MESHFIX_TOOL_MESHFILE_H
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../../meshfix.h"
+
+namespace tool {
+
+/* A normal the file stores for one face only (flat shading): after the
+   repair it must point the way its face does. */
+struct FlatNormal {
+    uint32_t face;
+    float normal[3];
+};
+
+/* The triangles of one decision unit, as the library sees them. */
+struct Unit {
+    std::string name;                     /* glTF: the mesh's name or "mesh N"; else empty */
+    std::vector<double> positions;        /* x y z per vertex */
+    std::vector<uint32_t> indices;        /* 3 per triangle */
+    std::vector<uint32_t> triangle_face;  /* the face of each triangle, non-decreasing */
+    size_t face_count = 0;
+    std::vector<float> triangle_normals;  /* empty, or 3 per triangle (STL facet normals) */
+    std::vector<float> vertex_normals;    /* empty, or 3 per vertex (OBJ vn, PLY nx, glTF NORMAL) */
+    std::vector<FlatNormal> flat_normals; /* in the order the format numbers them */
+    bool flat_normals_follow_faces = false; /* STL: a flipped facet's normal is negated with it
+                                               (when it agreed with the old winding) */
+};
+
+/* What the repair decided for a unit, per face and per flat normal. */
+struct Changes {
+    std::vector<unsigned char> face_flipped;
+    std::vector<unsigned char> negate_flat; /* --fix-normals: flat normals to negate */
+};
+
+/* A loaded file. The formats implement it. */
+class MeshFile {
+public:
+    virtual ~MeshFile() = default;
+    /* "obj", "off", "stl", "ply", "gltf" or "glb" */
+    virtual const char *format() const = 0;
+    /* Rewrites the flipped faces and negates the normals asked for. */
+    virtual void apply(size_t unit, const Changes &changes) = 0;
+    /* Writes the file as it now is to `path` (a temporary of the same
+       format); `target` is the final name, for formats that write files
+       beside it (glTF buffers and images go to the directory of `path`). */
+    virtual bool write(const std::string &path, const std::string &target, std::string &error) = 0;
+    /* Files other than the main one that the output needs beside it
+       (glTF buffers and images), relative to the main file's directory. */
+    virtual std::vector<std::string> companions() const { return {}; }
+    /* Lines for the report that only this format has (glTF: mirrored
+       nodes, double-sided materials), and the same as JSON members. */
+    virtual std::vector<std::string> notes() const { return {}; }
+    virtual std::string json_members() const { return {}; }
+
+    std::vector<Unit> units;
+    bool changed = false; /* set by apply when a byte of the file changes */
+};
+
+/* Appends face `face`, the polygon of these n vertices, to the unit as
+   triangles that all face its way (ear clipping; a fan beyond 256 corners
+   or when the polygon crosses itself). Positions must be in the unit. */
+void add_face(Unit &unit, const uint32_t *vertices, size_t n, uint32_t face);
+
+/* Reads `path` as `format`; on failure nullptr and a one-line message. */
+std::unique_ptr<MeshFile> load_obj(const std::string &data, std::string &error);
+std::unique_ptr<MeshFile> load_off(const std::string &data, std::string &error);
+std::unique_ptr<MeshFile> load_ply(const std::string &data, std::string &error);
+std::unique_ptr<MeshFile> load_stl(const std::string &data, std::string &error);
+std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error);
+
+/* The format an extension names ("obj", "off", "stl", "ply", "gltf",
+   "glb"), or "" for any other. */
+std::string format_of(const std::string &path);
+
+} // namespace tool
+
+#endif

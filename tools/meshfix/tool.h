@@ -1,0 +1,125 @@
+/* meshfix command-line tool: settings, per-unit results, files and reports
+   (the parts main.cpp puts together). */
+#ifndef MESHFIX_TOOL_TOOL_H
+#define MESHFIX_TOOL_TOOL_H
+
+#include "meshfile.h"
+
+#include <string>
+#include <vector>
+
+namespace tool {
+
+/* What the command line asked for, checked before any work. */
+struct Settings {
+    meshfix_policy policy = MESHFIX_POLICY_AUTO;
+    std::string policy_name = "auto";
+    float up[3] = {0.0f, 0.0f, 1.0f};
+    std::string up_name = "z";
+    float weld_tolerance = -1.0f; /* < 0: topology from bit-identical positions */
+    bool fix_normals = false;
+    bool inspect = false; /* --inspect or --check: nothing written but --mark */
+    bool check = false;   /* --check: exit status 3 when something is wrong */
+    bool json = false;
+    bool quiet = false;
+    bool progress = false;
+    unsigned jobs = 0; /* 0: one per core */
+};
+
+/* What the repair found and decided for one unit. */
+struct UnitResult {
+    meshfix_result status = MESHFIX_OK; /* not OK: the library refused the unit */
+    meshfix_report before{}, after{};   /* inspect, and orient (what it returns, or would) */
+    std::vector<unsigned char> triangle_flipped;
+    std::vector<unsigned int> patch_ids;
+    std::vector<float> patch_confidence;
+    Changes changes;
+    size_t faces_flipped = 0;
+    size_t faces_split = 0;       /* polygons whose triangles the library turned different ways */
+    size_t normals_disagree = 0;  /* flat normals against their face as written */
+    size_t normals_fixed = 0;
+    size_t normals_turned = 0;    /* STL: facet normals negated with their flipped facet */
+};
+
+/* Runs meshfix_inspect and meshfix_orient (report only: the format
+   rewrites the faces) on a unit and decides faces and normals. */
+UnitResult repair_unit(const Unit &unit, const Settings &settings);
+
+/* Whether a patch's verdict is doubtful (the library's rule). */
+bool doubtful(const UnitResult &r, unsigned int patch);
+
+/* One line of words for several units: their reports summed. */
+meshfix_report combined_report(const std::vector<UnitResult> &results, bool after);
+
+/* ---- files (files.cpp) ---- */
+
+/* Reads a regular file whole; a directory, FIFO or device is refused
+   before anything is read from it. */
+bool read_file(const std::string &path, std::string &data, std::string &error);
+bool write_bytes(const std::string &path, const std::string &bytes, std::string &error);
+/* Whether `target` can be written: its directory exists and it is not a
+   directory, FIFO or read-only file. */
+bool check_target(const std::string &target, std::string &error);
+bool is_directory(const std::string &path);
+std::string directory_of(const std::string &path);
+std::string base_name(const std::string &path);
+/* Loads any supported file (the format from the extension). */
+std::unique_ptr<MeshFile> load_file(const std::string &path, std::string &error);
+
+/* Outputs written all or nothing: each target is written into a new
+   temporary directory beside it, and only when every output of the set
+   was written are the files moved into place. */
+class OutputSet {
+public:
+    ~OutputSet() { discard(); }
+    /* The path to write the target's contents to (inside the temporary
+       directory, under the target's own name); "" and an error when the
+       temporary cannot be made. */
+    std::string reserve(const std::string &target, std::string &error);
+    bool commit(std::string &error);
+    void discard();
+    std::vector<std::string> written; /* after commit: every file moved into place */
+
+private:
+    struct Item {
+        std::string target, directory;
+    };
+    std::vector<Item> items;
+};
+
+/* Writes every unit's triangles, as repaired, in the format `path` names
+   (OBJ, OFF, STL or PLY; polygons as fans). colours (PLY, --mark): flipped
+   faces red, doubtful patches amber, the rest tinted by patch. */
+bool write_triangles(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
+                     bool colours, std::string &error);
+
+/* One input file: what to do with it and, once done, what happened. */
+struct Job {
+    std::string input, output, mark; /* output "" with --inspect; mark "" without --mark */
+    std::string name;                /* as the summary table shows it */
+    int exit = 0;                    /* 0, 1 (read or write failed), 2 (refused), 3 (--check: wrong) */
+    std::string error;               /* one line, when exit is 1 or 2 */
+    std::unique_ptr<MeshFile> file;
+    std::vector<UnitResult> results;
+    std::vector<std::string> written;
+};
+
+/* Runs one job: load, repair, write all or nothing. */
+void run_job(Job &job, const Settings &settings);
+
+/* ---- reports (report.cpp) ---- */
+
+/* The facts before and after, mesh by mesh, as a person reads them. */
+std::string text_report(const Job &job, const Settings &settings);
+/* The last line in plain words ("fixed 72 triangles in 3 patches", ...). */
+std::string summary_line(const Job &job, const Settings &settings);
+/* Whether --check finds something wrong. */
+bool something_wrong(const Job &job);
+/* The job as one JSON object (README: "The --json report"). */
+std::string json_report(const Job &job, const Settings &settings);
+/* Escapes a string for JSON, quotes included. */
+std::string json_string(const std::string &text);
+
+} // namespace tool
+
+#endif
