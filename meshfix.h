@@ -2056,7 +2056,7 @@ MESHFIX__PRIVATE int meshfix__is_closed_orientable(const meshfix__mesh *m, unsig
 
 /* 128 bytes, two cache lines when the array is aligned to 64 */
 typedef struct meshfix__node {
-    float low[3][MESHFIX__WIDTH], high[3][MESHFIX__WIDTH]; /* per axis, per child */
+    float bounds[6][MESHFIX__WIDTH]; /* low x y z, then high x y z; each per child */
     unsigned int child[MESHFIX__WIDTH];   /* a node, or a leaf's first slot */
     unsigned char count[MESHFIX__WIDTH];  /* 0: a node; 1 ..: a leaf of that many slots; EMPTY */
     unsigned int unused[3];
@@ -2084,7 +2084,7 @@ typedef struct meshfix__ray {
     float origin[3], direction[3], inverse[3];
     float shear[3];
     int kx, ky, kz;
-    int near_side[3];   /* per axis, the index in a node's bounds of the near side */
+    unsigned int near_plane[3], far_plane[3]; /* per axis, the row of a node's bounds on the near and far side */
     float t_min, t_max;
 } meshfix__ray;
 
@@ -2418,7 +2418,7 @@ MESHFIX__PRIVATE void meshfix__empty_node(meshfix__node *n)
     int c, k;
     for (c = 0; c < MESHFIX__WIDTH; ++c) {
         for (k = 0; k < 3; ++k)
-            n->low[k][c] = 1.0f, n->high[k][c] = -1.0f;
+            n->bounds[k][c] = 1.0f, n->bounds[3 + k][c] = -1.0f;
         n->child[c] = MESHFIX__NONE;
         n->count[c] = MESHFIX__EMPTY;
     }
@@ -2429,7 +2429,7 @@ MESHFIX__PRIVATE void meshfix__set_child(meshfix__node *n, int c, unsigned int c
 {
     int k;
     for (k = 0; k < 3; ++k)
-        n->low[k][c] = low[k], n->high[k][c] = high[k];
+        n->bounds[k][c] = low[k], n->bounds[3 + k][c] = high[k];
     n->child[c] = child;
     n->count[c] = (unsigned char)count;
 }
@@ -2610,8 +2610,8 @@ MESHFIX__PRIVATE void meshfix__node_box(const meshfix__node *n, float box[6])
         if (n->count[c] == MESHFIX__EMPTY)
             continue;
         for (k = 0; k < 3; ++k) {
-            box[k] = n->low[k][c] < box[k] ? n->low[k][c] : box[k];
-            box[3 + k] = n->high[k][c] > box[3 + k] ? n->high[k][c] : box[3 + k];
+            box[k] = n->bounds[k][c] < box[k] ? n->bounds[k][c] : box[k];
+            box[3 + k] = n->bounds[3 + k][c] > box[3 + k] ? n->bounds[3 + k][c] : box[3 + k];
         }
     }
 }
@@ -2670,7 +2670,8 @@ MESHFIX__PRIVATE void meshfix__setup_ray(meshfix__ray *r, const float origin[3],
         r->origin[k] = origin[k];
         r->direction[k] = direction[k];
         r->inverse[k] = 1.0f / direction[k];
-        r->near_side[k] = r->inverse[k] < 0 ? k + 3 : k;
+        r->near_plane[k] = (unsigned int)(r->inverse[k] < 0 ? 3 + k : k);
+        r->far_plane[k] = (unsigned int)(r->inverse[k] < 0 ? k : 3 + k);
     }
     ax = direction[0] < 0 ? -direction[0] : direction[0];
     ay = direction[1] < 0 ? -direction[1] : direction[1];
@@ -2748,8 +2749,8 @@ MESHFIX__PRIVATE unsigned int meshfix__hit_boxes(const meshfix__ray *r, const me
     __m128 t0 = _mm_set1_ps(r->t_min), t1 = _mm_set1_ps(t_max), widen = _mm_set1_ps(1.0000004f);
     int k;
     for (k = 0; k < 3; ++k) {
-        const float *near_plane = r->inverse[k] < 0 ? n->high[k] : n->low[k];
-        const float *far_plane = r->inverse[k] < 0 ? n->low[k] : n->high[k];
+        const float *near_plane = n->bounds[r->near_plane[k]];
+        const float *far_plane = n->bounds[r->far_plane[k]];
         __m128 origin = _mm_set1_ps(r->origin[k]), inverse = _mm_set1_ps(r->inverse[k]);
         __m128 tn = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(near_plane), origin), inverse);
         __m128 tf = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(far_plane), origin), inverse), widen);
@@ -2768,8 +2769,8 @@ MESHFIX__PRIVATE unsigned int meshfix__hit_boxes(const meshfix__ray *r, const me
     uint32x4_t inside;
     int k;
     for (k = 0; k < 3; ++k) {
-        const float *near_plane = r->inverse[k] < 0 ? n->high[k] : n->low[k];
-        const float *far_plane = r->inverse[k] < 0 ? n->low[k] : n->high[k];
+        const float *near_plane = n->bounds[r->near_plane[k]];
+        const float *far_plane = n->bounds[r->far_plane[k]];
         float32x4_t origin = vdupq_n_f32(r->origin[k]), inverse = vdupq_n_f32(r->inverse[k]);
         float32x4_t tn = vmulq_f32(vsubq_f32(vld1q_f32(near_plane), origin), inverse);
         float32x4_t tf = vmulq_f32(vmulq_f32(vsubq_f32(vld1q_f32(far_plane), origin), inverse), widen);
@@ -2791,8 +2792,8 @@ MESHFIX__PRIVATE unsigned int meshfix__hit_boxes(const meshfix__ray *r, const me
     for (c = 0; c < MESHFIX__WIDTH; ++c)
         t0[c] = r->t_min, t1[c] = t_max;
     for (k = 0; k < 3; ++k) {
-        const float *near_plane = r->inverse[k] < 0 ? n->high[k] : n->low[k];
-        const float *far_plane = r->inverse[k] < 0 ? n->low[k] : n->high[k];
+        const float *near_plane = n->bounds[r->near_plane[k]];
+        const float *far_plane = n->bounds[r->far_plane[k]];
         for (c = 0; c < MESHFIX__WIDTH; ++c) {
             float tn = (near_plane[c] - r->origin[k]) * r->inverse[k];
             float tf = (far_plane[c] - r->origin[k]) * r->inverse[k] * 1.0000004f;
@@ -3005,8 +3006,8 @@ MESHFIX__PRIVATE int meshfix__trace(const meshfix__bvh *b, unsigned int root, co
                     return 1;
                 continue;
             }
-            /* nearest first (ties: child order) */
-            for (i = pending++; i > 0 && near_t[i - 1] > entry[c]; --i) {
+            /* nearest first (ties: child order); any hit will do for ANY_HIT */
+            for (i = pending++; i > 0 && q->mode != MESHFIX__ANY_HIT && near_t[i - 1] > entry[c]; --i) {
                 near_t[i] = near_t[i - 1];
                 next[i] = next[i - 1];
             }
@@ -3062,7 +3063,7 @@ MESHFIX__PRIVATE unsigned int meshfix__boxes_around(const meshfix__node *nodes, 
             if (n->count[c] == MESHFIX__EMPTY)
                 continue;
             for (k = 0; k < 3; ++k)
-                child[k] = n->low[k][c], child[3 + k] = n->high[k][c];
+                child[k] = n->bounds[k][c], child[3 + k] = n->bounds[3 + k][c];
             if (!(overlapping ? meshfix__box_overlaps(child, box) : meshfix__box_contains(child, box)))
                 continue;
             if (n->count[c] == 0)
@@ -6105,6 +6106,20 @@ MESHFIX_API int meshfix_check(const void *indices, size_t index_count, const voi
             l.buffer = f->text, l.size = sizeof(f->text), l.length = 0;
             meshfix__say(&l, "not valid input: ");
             meshfix__say(&l, meshfix_result_string(result));
+            if (result == MESHFIX_ERROR_INDEX_OUT_OF_RANGE) {
+                /* where: the first index that is out of range */
+                size_t i = 0;
+                while (meshfix__source_index(&call.input, i) < vertex_count)
+                    ++i;
+                f->triangle = i / 3;
+                f->count = 1;
+                meshfix__say(&l, "; index ");
+                meshfix__say_number(&l, meshfix__source_index(&call.input, i));
+                meshfix__say(&l, " in triangle ");
+                meshfix__say_number(&l, i / 3);
+                meshfix__say(&l, ", ");
+                meshfix__say_count(&l, vertex_count, "vertex", "vertices");
+            }
         }
         return 0;
     }

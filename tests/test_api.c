@@ -253,6 +253,8 @@ static void test_check_says_why(void)
     CHECK(!meshfix_check(idx, 12, tetra_p, 4, 0, 0, NULL, &why));
     printf("    %s\n", why.text);
     CHECK_EQ(why.result, MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
+    CHECK_EQ(why.triangle, 1);
+    CHECK(strstr(why.text, "index 9 in triangle 1, 4 vertices") != NULL);
     CHECK(!meshfix_check(tetra_i, 12, NULL, 4, 0, MESHFIX_REQUIRE_OUTWARD, NULL, &why));
     CHECK_EQ(why.result, MESHFIX_ERROR_POSITIONS_REQUIRED);
     /* no failure struct is fine */
