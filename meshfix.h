@@ -1890,6 +1890,21 @@ MESHFIX__PRIVATE int meshfix__sdf_vote(meshfix__mesh *m, unsigned int t, const d
     return vote;
 }
 
+/* SDF: counts a triangle whose own vote disagrees with the patch's flip;
+   returns the flip the mode asks for: per patch, the patch's; per
+   triangle, its own vote's. */
+MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned int t, unsigned int patch_flip,
+                                               meshfix_report *r)
+{
+    unsigned int bits = m->tri_bits[t];
+    int has_vote = (bits & (MESHFIX__TRI_VOTE_IN | MESHFIX__TRI_VOTE_OUT)) != 0;
+    unsigned int own_flip = (bits & MESHFIX__TRI_VOTE_IN) ? 1u : 0u;
+    if (has_vote && own_flip != patch_flip)
+        r->evidence.triangles_sdf_disagree++;
+    /* the plain rule: a triangle with no vote (zero area, no gradient) stays as given */
+    return m->options->sdf.mode == MESHFIX_SDF_PER_TRIANGLE ? own_flip : patch_flip;
+}
+
 /* ===== >>orient ===== */
 
 /* Corners of t relative to origin, and its normal (b - a) x (c - a), twice
@@ -4784,8 +4799,8 @@ MESHFIX__PRIVATE void meshfix__patch_unit(const meshfix__patch_sums *s, meshfix_
    gradient's vote over the patch. UP: the lean of its area-weighted normal
    along the axis (none for a closed shell: zero up to rounding). NORMALS:
    the caller's normals. The rest were decided per unit before. */
-MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, int policy, const meshfix__patch_sums *s,
-                                           double sigma, meshfix__unit *u)
+MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, unsigned int p, int policy,
+                                           const meshfix__patch_sums *s, double sigma, meshfix__unit *u)
 {
     const meshfix_options *o = m->options;
     meshfix__patch_unit(s, u);
@@ -4810,7 +4825,7 @@ MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, int policy, 
     } else {
         /* MAJORITY; AUTO and OUTWARD on one closed shell alone: its volume */
         u->kind = MESHFIX__BY_NOTHING;
-        if (policy != MESHFIX_POLICY_MAJORITY && meshfix__is_closed_orientable(m, 0) &&
+        if (policy != MESHFIX_POLICY_MAJORITY && meshfix__is_closed_orientable(m, p) &&
             meshfix__volume_is_meaningful(s->volume_relative, s->area)) {
             u->kind = MESHFIX__BY_VOLUME;
             u->weight = MESHFIX__WEIGHT_STRONG;
@@ -5305,20 +5320,6 @@ MESHFIX__PRIVATE void meshfix__add_patch_to_component(const meshfix__mesh *m, un
         c->orientable = 0;
 }
 
-/* SDF: counts a triangle whose own vote disagrees with the patch's flip;
-   returns the flip the mode asks for: per patch, the patch's; per
-   triangle, its own vote's. */
-MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned int t, unsigned int patch_flip,
-                                               meshfix_report *r)
-{
-    unsigned int bits = m->tri_bits[t];
-    int has_vote = (bits & (MESHFIX__TRI_VOTE_IN | MESHFIX__TRI_VOTE_OUT)) != 0;
-    unsigned int own_flip = (bits & MESHFIX__TRI_VOTE_IN) ? 1u : 0u;
-    if (has_vote && own_flip != patch_flip)
-        r->evidence.triangles_sdf_disagree++;
-    /* the plain rule: a triangle with no vote (zero area, no gradient) stays as given */
-    return m->options->sdf.mode == MESHFIX_SDF_PER_TRIANGLE ? own_flip : patch_flip;
-}
 
 /* The verdict of patch p: the geometric policies decided it per unit
    before; the others decide it here from its sums. A verdict less
@@ -5335,7 +5336,7 @@ MESHFIX__PRIVATE void meshfix__patch_verdict(const meshfix__mesh *m, unsigned in
         u->confidence = m->confidence[p];
         u->kind = m->patch_kind[p];
     } else {
-        meshfix__decide_patch(m, policy, s, sigma, u);
+        meshfix__decide_patch(m, p, policy, s, sigma, u);
     }
     if (u->confidence < o->evidence.min_confidence) {
         u->turn = s->weight_kept < s->weight_reversed;
