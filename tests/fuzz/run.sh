@@ -46,8 +46,10 @@ for target in $targets; do
     log=build/fuzz/fuzz_$target.log
     touch build/fuzz/.start_$target # crashes of this run: the files newer than this
     echo "== fuzz_$target for $seconds s (log: $log)"
+    # slow units are reported (and saved as failures) from the per-input limit on
     # shellcheck disable=SC2086
-    build/fuzz/fuzz_$target -max_total_time="$seconds" -timeout=$timeout -print_final_stats=1 -max_len=$max_len \
+    build/fuzz/fuzz_$target -max_total_time="$seconds" -timeout=$timeout -report_slow_units=$timeout \
+        -print_final_stats=1 -max_len=$max_len \
         -artifact_prefix=build/fuzz/crashes_$target/ ${FUZZ_FLAGS:-} \
         build/fuzz/corpus_$target tests/fuzz/corpus/$source >"$log" 2>&1
     status=$?
