@@ -14,6 +14,11 @@
 //       writes IN with about FRACTION of its faces reversed (STL: vertex
 //       order only, the stored normals kept); prints how many. glTF: indexed
 //       triangle lists only, buffers rewritten beside OUT.
+//   node tests/cli/meshcheck.js flip-normals IN OUT SEED FRACTION
+//       writes IN with about FRACTION of its stored normals negated (OBJ vn
+//       lines; glTF NORMAL elements of float accessors, buffers beside OUT).
+//   node tests/cli/meshcheck.js colours MARK.ply
+//       prints "red R amber A other O": the faces of a --mark file by colour.
 //   node tests/cli/meshcheck.js big-endian IN.ply OUT.ply
 //       the same binary little-endian PLY, big-endian.
 'use strict';
@@ -163,9 +168,7 @@ function scramblePly(bytes, rnd, fraction) {
         let line = p.elements.filter((e) => e !== face && p.elements.indexOf(e) < p.elements.indexOf(face)).reduce((s, e) => s + e.count, 0);
         face.rows.forEach((row, i) => {
             if (picks[i]) {
-                const t = tokens(body[line + i]);
-                const n = Number(t[0]);
-                body[line + i] = [n, ...reversed(t.slice(1, n + 1)), ...t.slice(n + 1)].join(' ');
+                body[line + i] = reverseTokens(body[line + i], 1, Number(tokens(body[line + i])[0]));
                 count++;
             }
         });
@@ -397,7 +400,7 @@ function compareGltf(fa, fb, allowNormals) {
                 const x = decode(a, p.attributes[name]), y = decode(b, q.attributes[name]);
                 if (same(x, y)) continue;
                 if (!allowNormals || !['NORMAL', 'TANGENT'].includes(name) || !x.every((v, k) => v === y[k] || v === -y[k])) fail(`${where}: ${name} differs`);
-                if (name === 'NORMAL') r.normals += x.filter((v, k) => v !== y[k]).length / 3;
+                if (name === 'NORMAL') for (let k = 0; k < x.length; k += 3) r.normals += x[k] !== y[k] || x[k + 1] !== y[k + 1] || x[k + 2] !== y[k + 2];
             }
             (p.targets || []).forEach((t, ti) => {
                 for (const name of Object.keys(t)) if (!same(decode(a, t[name]), decode(b, q.targets[ti][name]))) fail(`${where}: morph target ${ti} ${name} differs`);
@@ -439,7 +442,12 @@ function scrambleGltf(fin, fout, rnd, fraction) {
                 count++;
             }
         }
-    // write the JSON as it was, the buffers beside it (or in the GLB)
+    writeGltf(g, fin, fout);
+    return count;
+}
+
+// The JSON as it was, the buffers beside it (or in the GLB), images copied.
+function writeGltf(g, fin, fout) {
     g.buffers.forEach((b, i) => {
         if (b.source === 'data') g.json.buffers[i].uri = `data:application/octet-stream;base64,${b.data.toString('base64')}`;
         else if (b.source !== 'glb') fs.writeFileSync(path.resolve(path.dirname(fout), g.json.buffers[i].uri), b.data);
@@ -456,7 +464,51 @@ function scrambleGltf(fin, fout, rnd, fraction) {
         const chunk = (type, body) => { const h = Buffer.alloc(8); h.writeUInt32LE(body.length, 0); h.writeUInt32LE(type, 4); return Buffer.concat([h, body]); };
         fs.writeFileSync(fout, Buffer.concat([head, chunk(0x4E4F534A, json), chunk(0x004E4942, bin)]));
     } else fs.writeFileSync(fout, JSON.stringify(g.json, null, 2));
+}
+
+function flipNormals(fin, fout, rnd, fraction) {
+    if (ext(fin) === 'obj') {
+        const r = scrambleText(fs.readFileSync(fin).toString('latin1'), rnd, fraction, (l) => tokens(l)[0] === 'vn',
+            (l) => l.replace(/-?[0-9.]+(e[-+]?[0-9]+)?/gi, (x) => (Number(x) === 0 ? x : x[0] === '-' ? x.slice(1) : `-${x}`)));
+        fs.writeFileSync(fout, r.data);
+        return r.count;
+    }
+    const g = loadGltf(fin);
+    let count = 0;
+    const done = new Set();
+    for (const m of g.json.meshes || [])
+        for (const p of m.primitives) {
+            const index = p.attributes.NORMAL;
+            if (index === undefined || done.has(index)) continue;
+            done.add(index);
+            const a = g.json.accessors[index], v = g.json.bufferViews[a.bufferView];
+            if (a.componentType !== 5126 || a.sparse) continue;
+            const data = g.buffers[v.buffer].data, stride = v.byteStride || 12;
+            for (let i = 0; i < a.count; ++i) {
+                if (rnd() >= fraction) continue;
+                for (let k = 0; k < 3; ++k) {
+                    const o = (v.byteOffset || 0) + (a.byteOffset || 0) + i * stride + 4 * k;
+                    const x = data.readFloatLE(o);
+                    if (x !== 0) data.writeFloatLE(-x, o);
+                }
+                count++;
+            }
+        }
+    writeGltf(g, fin, fout);
     return count;
+}
+
+// The line with tokens [from, from + n) in reverse order (the first kept
+// first), the spaces between tokens as they were.
+function reverseTokens(line, from, n) {
+    const found = [...line.matchAll(/[^ \t\r]+/g)];
+    const order = reversed(found.slice(from, from + n).map((m) => m[0]));
+    let out = '', at = 0;
+    found.forEach((m, i) => {
+        out += line.slice(at, m.index) + (i >= from && i < from + n ? order[i - from] : m[0]);
+        at = m.index + m[0].length;
+    });
+    return out + line.slice(at);
 }
 
 // ---- scrambling text formats ----
@@ -488,19 +540,29 @@ function main() {
         const data = fs.readFileSync(x);
         let r;
         if (f === 'obj') r = scrambleText(data.toString('latin1'), rnd, fraction, (l) => tokens(l)[0] === 'f',
-            (l) => { const t = tokens(l); return ['f', ...reversed(t.slice(1))].join(' '); });
+            (l) => reverseTokens(l.replace(/#.*/, ''), 1, tokens(l).length - 1) + (l.includes('#') ? l.slice(l.indexOf('#')) : ''));
         else if (f === 'off') {
             const text = data.toString('latin1');
             const counts = tokens(lines(text).find((l, i) => i > 0 && /^\s*\d/.test(l)));
             const nv = Number(counts[0]);
             let seen = -1; // lines of numbers after the counts: vertices, then faces
             r = scrambleText(text, rnd, fraction, (l, i) => { if (i > 0 && /^\s*-?[\d.]/.test(l)) seen++; return seen > nv && /^\s*\d/.test(l); },
-                (l) => { const t = tokens(l); const n = Number(t[0]); return [n, ...reversed(t.slice(1, n + 1)), ...t.slice(n + 1)].join(' '); });
+                (l) => reverseTokens(l, 1, Number(tokens(l)[0])));
         } else if (f === 'ply') r = scramblePly(data, rnd, fraction);
         else if (f === 'stl') r = scrambleStl(data, rnd, fraction);
         else { console.log(`scrambled ${scrambleGltf(x, y, rnd, fraction)}`); return; }
         fs.writeFileSync(y, r.data);
         console.log(`scrambled ${r.count}`);
+    } else if (command === 'flip-normals') {
+        console.log(`negated ${flipNormals(x, y, random(Number(z)), Number(w))}`);
+    } else if (command === 'colours') {
+        const face = parsePly(fs.readFileSync(x)).elements.find((e) => e.name === 'face');
+        const c = { red: 0, amber: 0, other: 0 };
+        for (const row of face.rows) {
+            const rgb = row.slice(1).map((v) => v.value).join(' ');
+            c[rgb === '230 30 30' ? 'red' : rgb === '255 176 0' ? 'amber' : 'other']++;
+        }
+        console.log(`red ${c.red} amber ${c.amber} other ${c.other}`);
     } else if (command === 'big-endian') {
         fs.writeFileSync(y, bigEndian(fs.readFileSync(x)));
     } else fail('usage: meshcheck.js compare A B [--normals] | scramble IN OUT SEED FRACTION | big-endian IN OUT');

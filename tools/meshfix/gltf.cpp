@@ -346,37 +346,35 @@ struct MeshReader {
         return true;
     }
 
-    /* A NORMAL element that one triangle alone uses is a flat normal, when
-       the tool can negate it: float, not sparse, this mesh's own. */
-    void find_flat_normals(int mesh, Unit &u, const std::vector<PrimitiveTriangles> &prims, std::vector<NormalSlot> &slots)
+    /* Each NORMAL element the tool can negate (float, not sparse, this
+       mesh's own) is a slot, with the triangles that use it. */
+    void collect_normals(int mesh, Unit &u, const std::vector<PrimitiveTriangles> &prims, std::vector<NormalSlot> &slots)
     {
-        std::map<std::pair<int, uint32_t>, long long> owner; /* -2: more than one triangle */
-        std::map<int, int> tangent_of;
+        std::map<std::pair<int, uint32_t>, uint32_t> slot_of;
+        std::map<int, std::vector<double>> values;
         for (const PrimitiveTriangles &pt : prims) {
             const tinygltf::Primitive &p = file.model.meshes[(size_t)mesh].primitives[(size_t)pt.primitive];
             auto normal = p.attributes.find("NORMAL");
-            if (normal == p.attributes.end() || !negatable(normal->second, 3, mesh))
+            std::string ignored;
+            if (normal == p.attributes.end() || !negatable(normal->second, 3, mesh) ||
+                (!values.count(normal->second) && !read_accessor(file.model, normal->second, 3, values[normal->second], ignored)))
                 continue;
+            const std::vector<double> &n = values[normal->second];
             auto tangent = p.attributes.find("TANGENT");
-            tangent_of[normal->second] = tangent != p.attributes.end() && negatable(tangent->second, 4, mesh) ? tangent->second : -1;
+            int tangent_accessor = tangent != p.attributes.end() && negatable(tangent->second, 4, mesh) ? tangent->second : -1;
             for (size_t c = 0; c < pt.corners.size(); ++c) {
-                long long t = (long long)(pt.first_triangle + c / 3);
-                auto inserted = owner.emplace(std::make_pair(normal->second, pt.corners[c]), t);
-                if (!inserted.second && inserted.first->second != t)
-                    inserted.first->second = -2;
+                uint32_t element = pt.corners[c];
+                if (3 * (size_t)element + 2 >= n.size())
+                    continue;
+                auto found = slot_of.emplace(std::make_pair(normal->second, element), (uint32_t)slots.size());
+                if (found.second) {
+                    slots.push_back({normal->second, tangent_accessor, element});
+                    u.slot_normals.insert(u.slot_normals.end(), {(float)n[3 * element], (float)n[3 * element + 1], (float)n[3 * element + 2]});
+                }
+                u.slot_faces.push_back({found.first->second, (uint32_t)(pt.first_triangle + c / 3)});
             }
         }
-        std::vector<double> values;
-        for (const auto &o : owner) {
-            if (o.second < 0)
-                continue;
-            std::string ignored;
-            if (!read_accessor(file.model, o.first.first, 3, values, ignored))
-                continue;
-            const double *n = &values[3 * (size_t)o.first.second];
-            u.flat_normals.push_back({(uint32_t)o.second, {(float)n[0], (float)n[1], (float)n[2]}});
-            slots.push_back({o.first.first, tangent_of[o.first.first], o.first.second});
-        }
+        find_flat_normals(u);
     }
 
     bool negatable(int accessor, int width, int mesh)
@@ -421,7 +419,7 @@ struct MeshReader {
             u.face_count = u.indices.size() / 3;
             for (size_t t = 0; t < u.face_count; ++t)
                 u.triangle_face.push_back((uint32_t)t);
-            find_flat_normals((int)mesh, u, prims, slots);
+            collect_normals((int)mesh, u, prims, slots);
             file.units.push_back(std::move(u));
             file.unit_primitives.push_back(std::move(prims));
             file.unit_slots.push_back(std::move(slots));
@@ -635,10 +633,10 @@ void GltfFile::apply(size_t unit, const Changes &changes)
         p.indices = add_index_accessor(model, list, type);
         p.mode = TINYGLTF_MODE_TRIANGLES;
     }
-    for (size_t k = 0; k < unit_slots[unit].size(); ++k) {
+    for (size_t k = 0; k < units[unit].flat_normals.size(); ++k) {
         if (!changes.negate_flat[k])
             continue;
-        const NormalSlot &s = unit_slots[unit][k];
+        const NormalSlot &s = unit_slots[unit][units[unit].flat_normals[k].slot];
         negate_floats(model, s.normal, s.element, 0, 3);
         ++normals_negated;
         if (s.tangent >= 0 && s.element < model.accessors[(size_t)s.tangent].count) {

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <dirent.h>
 #include <mutex>
+#include <new>
 #include <sys/stat.h>
 #include <thread>
 #include <unistd.h>
@@ -127,7 +128,8 @@ int parse(int argc, char **argv, CommandLine &c)
             char *end = nullptr;
             if (value(v))
                 s.weld_tolerance = std::strtof(v.c_str(), &end);
-            if (end == nullptr || *end != 0 || v.empty() || !(s.weld_tolerance >= 0.0f && s.weld_tolerance < 1e30f))
+            /* a number >= 0; the library judges its range (infinity: status 2) */
+            if (end == nullptr || *end != 0 || v.empty() || !(s.weld_tolerance >= 0.0f))
                 return fail_usage("--weld takes a tolerance >= 0, not '" + v + "'");
         } else if (a == "--mark") {
             if (!value(c.mark))
@@ -289,9 +291,26 @@ bool write_outputs(Job &job, const Settings &s)
     return ok;
 }
 
+/* Load, repair, write; run_job catches running out of memory. */
+void run_job_steps(Job &job, const Settings &s);
+
 } // namespace
 
 void run_job(Job &job, const Settings &s)
+{
+    try {
+        run_job_steps(job, s);
+    } catch (const std::bad_alloc &) {
+        job.file.reset();
+        job.results.clear();
+        job.error = job.input + ": out of memory";
+        job.exit = 1;
+    }
+}
+
+namespace {
+
+void run_job_steps(Job &job, const Settings &s)
 {
     job.file = load_file(job.input, job.error);
     if (!job.file) {
@@ -319,22 +338,20 @@ void run_job(Job &job, const Settings &s)
         job.exit = 3;
 }
 
-namespace {
-
 /* The jobs on worker threads; main prints each job's report in input
    order as soon as it and those before it are done. */
 class Runner {
 public:
     Runner(std::vector<Job> &all, const Settings &settings) : jobs(all), s(settings), done(all.size(), 0) {}
 
-    void run(unsigned threads, bool progress)
+    void run(unsigned threads, bool progress, std::chrono::milliseconds delay)
     {
         std::vector<std::thread> workers;
         for (unsigned t = 0; t < threads; ++t)
             workers.emplace_back([this] { work(); });
         std::thread reporter;
         if (progress)
-            reporter = std::thread([this] { report_progress(); });
+            reporter = std::thread([this, delay] { report_progress(delay); });
         for (std::thread &w : workers)
             w.join();
         {
@@ -370,15 +387,16 @@ private:
         }
     }
 
-    /* After the first second, a line on stderr each second: files done of
-       all, and what is being worked on. */
-    void report_progress()
+    /* A line on stderr each second once the work has lasted `delay`
+       (a second when shown because stderr is a terminal, a quarter of one
+       with --progress): files done of all, and what is being worked on. */
+    void report_progress(std::chrono::milliseconds delay)
     {
         bool terminal = isatty(2) != 0, shown = false;
-        auto start = std::chrono::steady_clock::now();
+        auto start = std::chrono::steady_clock::now() + delay - std::chrono::seconds(1);
         std::unique_lock<std::mutex> lock(mutex);
         while (!finished) {
-            changed.wait_for(lock, std::chrono::milliseconds(250));
+            changed.wait_for(lock, std::chrono::milliseconds(50));
             if (finished || std::chrono::steady_clock::now() - start < std::chrono::seconds(1))
                 continue;
             size_t working = std::min(next.load(), jobs.size());
@@ -477,7 +495,9 @@ int main(int argc, char **argv)
     unsigned threads = s.jobs != 0 ? s.jobs : std::max(1u, std::thread::hardware_concurrency());
     threads = std::min<unsigned>(threads, (unsigned)jobs.size());
     Runner runner(jobs, s);
-    std::thread pool([&] { runner.run(threads, s.progress || (batch && isatty(2))); });
+    std::thread pool([&] {
+        runner.run(threads, s.progress || (batch && isatty(2)), std::chrono::milliseconds(s.progress ? 250 : 1000));
+    });
     if (s.json)
         std::printf("{\"meshfix\":\"%d.%d.%d\",\"mode\":\"%s\",\"policy\":%s,\"files\":[", MESHFIX_VERSION_MAJOR,
                     MESHFIX_VERSION_MINOR, MESHFIX_VERSION_PATCH, s.check ? "check" : s.inspect ? "inspect" : "repair",

@@ -19,11 +19,13 @@
 
 namespace tool {
 
-/* A normal the file stores for one face only (flat shading): after the
-   repair it must point the way its face does. */
+/* A normal the file stores for faces that all lie in one plane (flat
+   shading: one face, or the two triangles of a quad): after the repair it
+   must point the way its face does. */
 struct FlatNormal {
-    uint32_t face;
+    uint32_t face;     /* the first face that uses it */
     float normal[3];
+    uint32_t slot;     /* the format's number for it (vn index, vertex, ...) */
 };
 
 /* The triangles of one decision unit, as the library sees them. */
@@ -35,7 +37,12 @@ struct Unit {
     size_t face_count = 0;
     std::vector<float> triangle_normals;  /* empty, or 3 per triangle (STL facet normals) */
     std::vector<float> vertex_normals;    /* empty, or 3 per vertex (OBJ vn, PLY nx, glTF NORMAL) */
-    std::vector<FlatNormal> flat_normals; /* in the order the format numbers them */
+    /* The normals the file stores per vertex (OBJ vn, PLY nx ny nz, glTF
+       NORMAL): x y z per slot, and the faces that use each, as (slot, face)
+       pairs; find_flat_normals turns them into flat_normals. */
+    std::vector<float> slot_normals;
+    std::vector<std::pair<uint32_t, uint32_t>> slot_faces;
+    std::vector<FlatNormal> flat_normals;
     bool flat_normals_follow_faces = false; /* STL: a flipped facet's normal is negated with it
                                                (when it agreed with the old winding) */
 };
@@ -74,6 +81,14 @@ public:
    triangles that all face its way (ear clipping; a fan beyond 256 corners
    or when the polygon crosses itself). Positions must be in the unit. */
 void add_face(Unit &unit, const uint32_t *vertices, size_t n, uint32_t face);
+
+/* The normal of each face (the sum of its triangles' cross products,
+   right for concave polygons too), 3 doubles per face. */
+std::vector<double> face_normals(const Unit &unit);
+
+/* Fills unit.flat_normals from its slots: each slot whose faces all lie in
+   one plane (within about half a degree), with its first face. */
+void find_flat_normals(Unit &unit);
 
 /* Reads `path` as `format`; on failure nullptr and a one-line message. */
 std::unique_ptr<MeshFile> load_obj(const std::string &data, std::string &error);

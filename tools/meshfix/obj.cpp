@@ -26,7 +26,6 @@ public:
     std::vector<Span> corners;          /* every face's corner tokens, face after face */
     std::vector<size_t> face_first;     /* face f's corners: [face_first[f], face_first[f + 1]) */
     std::vector<std::array<Span, 3>> normal_tokens; /* the x y z tokens of each vn line */
-    std::vector<uint32_t> flat_vn;      /* the vn of each unit.flat_normals entry */
     std::vector<Edit> edits;
 };
 
@@ -48,7 +47,7 @@ std::vector<Span> line_tokens(const std::string &data, size_t &at)
             continue;
         }
         size_t begin = at;
-        while (at < n && !std::strchr(" \t\r\f\v\n#", data[at]))
+        while (at < n && !is_space(data[at]) && data[at] != '#')
             ++at;
         tokens.push_back({begin, at});
     }
@@ -188,24 +187,18 @@ struct ObjReader {
         for (size_t f = 0; f < faces; ++f)
             add_face(u, &vertex_of[file.face_first[f]], file.face_first[f + 1] - file.face_first[f], (uint32_t)f);
         u.face_count = faces;
-        find_flat_normals(u);
+        collect_normals(u);
     }
 
-    /* A vn named by the corners of one face only. */
-    void find_flat_normals(Unit &u)
+    /* Each vn with the faces whose corners name it. */
+    void collect_normals(Unit &u)
     {
-        std::vector<long long> owner(normals.size() / 3, -1); /* -2: more than one face */
+        u.slot_normals = normals;
         for (size_t f = 0; f + 1 < file.face_first.size(); ++f)
-            for (size_t c = file.face_first[f]; c < file.face_first[f + 1]; ++c) {
-                long long vn = corner_vn[c];
-                if (vn >= 0)
-                    owner[vn] = owner[vn] == -1 || owner[vn] == (long long)f ? (long long)f : -2;
-            }
-        for (size_t vn = 0; vn < owner.size(); ++vn)
-            if (owner[vn] >= 0) {
-                u.flat_normals.push_back({(uint32_t)owner[vn], {normals[3 * vn], normals[3 * vn + 1], normals[3 * vn + 2]}});
-                file.flat_vn.push_back((uint32_t)vn);
-            }
+            for (size_t c = file.face_first[f]; c < file.face_first[f + 1]; ++c)
+                if (corner_vn[c] >= 0)
+                    u.slot_faces.push_back({(uint32_t)corner_vn[c], (uint32_t)f});
+        find_flat_normals(u);
     }
 };
 
@@ -217,9 +210,9 @@ void ObjFile::apply(size_t, const Changes &changes)
             reverse_tokens(data, face, edits);
             changed = true;
         }
-    for (size_t k = 0; k < flat_vn.size(); ++k)
+    for (size_t k = 0; k < units[0].flat_normals.size(); ++k)
         if (changes.negate_flat[k]) {
-            for (const Span &s : normal_tokens[flat_vn[k]])
+            for (const Span &s : normal_tokens[units[0].flat_normals[k].slot])
                 edits.push_back({s.begin, s.end - s.begin, negated_number(data.substr(s.begin, s.end - s.begin))});
             changed = true;
         }

@@ -31,7 +31,7 @@ struct OffReader {
     bool word(Span &s)
     {
         for (;;) {
-            while (at < data.size() && std::strchr(" \t\r\n\f\v", data[at]) && data[at] != 0)
+            while (at < data.size() && is_space(data[at]))
                 ++at;
             if (at < data.size() && data[at] == '#') {
                 while (at < data.size() && data[at] != '\n')
@@ -41,7 +41,7 @@ struct OffReader {
             break;
         }
         s.begin = at;
-        while (at < data.size() && !std::strchr(" \t\r\n\f\v", data[at]))
+        while (at < data.size() && !is_space(data[at]))
             ++at;
         s.end = at;
         return s.end > s.begin;

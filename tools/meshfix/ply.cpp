@@ -67,7 +67,6 @@ public:
     int index_type = 0;
     int normal_type = 0;
     std::vector<std::array<Place, 3>> normal_places; /* of each vertex with nx ny nz */
-    std::vector<uint32_t> flat_vertex;               /* the vertex of each flat normal */
     std::vector<Edit> edits;
 };
 
@@ -93,10 +92,10 @@ struct PlyReader {
         at = end == std::string::npos ? file.data.size() : end + 1;
         size_t i = 0;
         while (i < line.size()) {
-            while (i < line.size() && std::strchr(" \t\r", line[i]) && line[i] != 0)
+            while (i < line.size() && is_space(line[i]))
                 ++i;
             size_t b = i;
-            while (i < line.size() && !std::strchr(" \t\r", line[i]))
+            while (i < line.size() && !is_space(line[i]))
                 ++i;
             if (i > b)
                 words.push_back(line.substr(b, i - b));
@@ -160,10 +159,10 @@ struct PlyReader {
     {
         const std::string &d = file.data;
         if (file.encoding == ASCII) {
-            while (at < d.size() && std::strchr(" \t\r\n\f\v", d[at]) && d[at] != 0)
+            while (at < d.size() && is_space(d[at]))
                 ++at;
             place.begin = at;
-            while (at < d.size() && !std::strchr(" \t\r\n\f\v", d[at]))
+            while (at < d.size() && !is_space(d[at]))
                 ++at;
             place.end = at;
             return (place.end > place.begin && parse_double(d.substr(place.begin, place.end - place.begin), out)) ||
@@ -332,7 +331,7 @@ struct PlyReader {
             }
         }
         triangulate(u, corner_vertex);
-        find_flat_normals(u, corner_vertex);
+        collect_normals(u, corner_vertex);
         return !u.indices.empty() || fail("no triangles");
     }
 
@@ -344,23 +343,16 @@ struct PlyReader {
         }
     }
 
-    /* A vertex normal of a vertex that one face alone uses. */
-    void find_flat_normals(Unit &u, const std::vector<uint32_t> &corner_vertex)
+    /* Each vertex normal with the faces that use its vertex. */
+    void collect_normals(Unit &u, const std::vector<uint32_t> &corner_vertex)
     {
         if (file.normal_places.empty())
             return;
-        std::vector<long long> owner(u.positions.size() / 3, -1); /* -2: more than one face */
+        u.slot_normals = u.vertex_normals;
         for (size_t f = 0; f + 1 < file.face_first.size(); ++f)
-            for (size_t c = file.face_first[f]; c < file.face_first[f + 1]; ++c) {
-                long long &o = owner[corner_vertex[c]];
-                o = o == -1 || o == (long long)f ? (long long)f : -2;
-            }
-        for (size_t v = 0; v < owner.size(); ++v)
-            if (owner[v] >= 0) {
-                const float *n = &u.vertex_normals[3 * v];
-                u.flat_normals.push_back({(uint32_t)owner[v], {n[0], n[1], n[2]}});
-                file.flat_vertex.push_back((uint32_t)v);
-            }
+            for (size_t c = file.face_first[f]; c < file.face_first[f + 1]; ++c)
+                u.slot_faces.push_back({corner_vertex[c], (uint32_t)f});
+        find_flat_normals(u);
     }
 };
 
@@ -412,10 +404,10 @@ void PlyFile::apply(size_t, const Changes &changes)
         for (size_t i = 0; i < n; ++i)
             data.replace(corners[first + reversed_corner(i, n)].begin, values[i].size(), values[i]);
     }
-    for (size_t k = 0; k < flat_vertex.size(); ++k) {
+    for (size_t k = 0; k < units[0].flat_normals.size(); ++k) {
         if (!changes.negate_flat[k])
             continue;
-        for (const Place &p : normal_places[flat_vertex[k]]) {
+        for (const Place &p : normal_places[units[0].flat_normals[k].slot]) {
             if (encoding == ASCII)
                 edits.push_back({p.begin, p.end - p.begin, negated_number(data.substr(p.begin, p.end - p.begin))});
             else

@@ -8,6 +8,7 @@
    that all face the polygon's way. */
 #include "meshfile.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tool {
@@ -117,6 +118,48 @@ void add_face(Unit &u, const uint32_t *vertices, size_t n, uint32_t face)
         u.indices.insert(u.indices.end(), {vertices[corners[i]], vertices[corners[i + 1]], vertices[corners[i + 2]]});
         u.triangle_face.push_back(face);
     }
+}
+
+} // namespace tool
+
+namespace tool {
+
+std::vector<double> face_normals(const Unit &u)
+{
+    std::vector<double> n(3 * u.face_count, 0.0);
+    for (size_t t = 0; t < u.triangle_face.size(); ++t) {
+        const double *a = &u.positions[3 * (size_t)u.indices[3 * t]];
+        const double *b = &u.positions[3 * (size_t)u.indices[3 * t + 1]];
+        const double *c = &u.positions[3 * (size_t)u.indices[3 * t + 2]];
+        double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, g[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double *f = &n[3 * (size_t)u.triangle_face[t]];
+        f[0] += e[1] * g[2] - e[2] * g[1];
+        f[1] += e[2] * g[0] - e[0] * g[2];
+        f[2] += e[0] * g[1] - e[1] * g[0];
+    }
+    return n;
+}
+
+void find_flat_normals(Unit &u)
+{
+    std::vector<double> faces = face_normals(u);
+    std::sort(u.slot_faces.begin(), u.slot_faces.end());
+    for (size_t i = 0; i < u.slot_faces.size();) {
+        uint32_t slot = u.slot_faces[i].first, first = u.slot_faces[i].second;
+        const double *a = &faces[3 * (size_t)first];
+        double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        bool flat = la > 0.0;
+        for (; i < u.slot_faces.size() && u.slot_faces[i].first == slot; ++i) {
+            const double *b = &faces[3 * (size_t)u.slot_faces[i].second];
+            double lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+            flat = flat && std::fabs(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) >= 0.99996 * la * lb;
+        }
+        const float *n = &u.slot_normals[3 * (size_t)slot];
+        if (flat)
+            u.flat_normals.push_back({first, {n[0], n[1], n[2]}, slot});
+    }
+    u.slot_faces.clear();
+    u.slot_faces.shrink_to_fit();
 }
 
 } // namespace tool

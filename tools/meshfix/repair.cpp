@@ -47,24 +47,6 @@ void decide_faces(const Unit &u, UnitResult &r)
     }
 }
 
-/* The normal of each face as given (the sum of its triangles' cross
-   products: right for concave polygons too). */
-std::vector<double> face_normals(const Unit &u)
-{
-    std::vector<double> n(3 * u.face_count, 0.0);
-    for (size_t t = 0; t < u.triangle_face.size(); ++t) {
-        const double *a = &u.positions[3 * (size_t)u.indices[3 * t]];
-        const double *b = &u.positions[3 * (size_t)u.indices[3 * t + 1]];
-        const double *c = &u.positions[3 * (size_t)u.indices[3 * t + 2]];
-        double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, g[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        double *f = &n[3 * (size_t)u.triangle_face[t]];
-        f[0] += e[1] * g[2] - e[2] * g[1];
-        f[1] += e[2] * g[0] - e[0] * g[2];
-        f[2] += e[0] * g[1] - e[1] * g[0];
-    }
-    return n;
-}
-
 /* Flat normals that point away from their face as it will be written. */
 void check_normals(const Unit &u, const Settings &s, UnitResult &r)
 {

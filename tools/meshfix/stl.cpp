@@ -65,10 +65,10 @@ struct AsciiScanner {
 
     bool word(Span &s)
     {
-        while (at < data.size() && std::strchr(" \t\r\n\f\v", data[at]) && data[at] != 0)
+        while (at < data.size() && is_space(data[at]))
             ++at;
         s.begin = at;
-        while (at < data.size() && !std::strchr(" \t\r\n\f\v", data[at]))
+        while (at < data.size() && !is_space(data[at]))
             ++at;
         s.end = at;
         return s.end > s.begin;
@@ -189,7 +189,7 @@ std::unique_ptr<MeshFile> load_stl(const std::string &data, std::string &error)
     u.face_count = facets;
     for (size_t f = 0; f < facets; ++f) {
         u.triangle_face.push_back((uint32_t)f);
-        u.flat_normals.push_back({(uint32_t)f, {normals[3 * f], normals[3 * f + 1], normals[3 * f + 2]}});
+        u.flat_normals.push_back({(uint32_t)f, {normals[3 * f], normals[3 * f + 1], normals[3 * f + 2]}, (uint32_t)f});
     }
     u.triangle_normals = std::move(normals);
     u.flat_normals_follow_faces = true; /* a facet's normal is negated with it */

@@ -20,6 +20,12 @@ struct Edit {
     std::string text;
 };
 
+/* Spaces between tokens (a NUL byte is not one: it is part of a token). */
+inline bool is_space(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
+
 /* The data with every edit applied; edits must not overlap. */
 std::string splice(const std::string &data, std::vector<Edit> edits);
 
