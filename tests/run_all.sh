@@ -149,5 +149,31 @@ cat "$docs_log"
 passed=$((passed + $(grep -c '^ok ' "$docs_log")))
 failed=$((failed + $(grep -c '^FAIL ' "$docs_log")))
 
+# The packages around the header: each script prints ok / FAIL / SKIP lines
+# and exits non-zero on a failure (SKIP: a tool is missing; bash .ci/run
+# installs it).
+package_tests() { # title, log name, command...
+    local title=$1 log="$out/$2.log" status
+    shift 2
+    echo "== $title"
+    "$@" >"$log" 2>&1
+    status=$?
+    grep -v -E '^[0-9]+ passed, [0-9]+ failed$' "$log"
+    passed=$((passed + $(grep -c '^ok ' "$log")))
+    failed=$((failed + $(grep -c '^FAIL ' "$log")))
+    if [ "$status" -ne 0 ] && ! grep -q '^FAIL ' "$log"; then
+        echo "FAIL $*: exit status $status without a FAIL line"
+        failed=$((failed + 1))
+    fi
+    skipped=$((skipped + $(grep -c '^SKIP ' "$log")))
+}
+skipped=0
+package_tests "CMake and pkg-config: a consumer through add_subdirectory, find_package and pkg-config" cmake \
+    bash tests/cmake/run.sh build/cmake
+package_tests "Python module: the binding against the C library on the same meshes" python \
+    bash python/test.sh build/python-test
+package_tests "npm package (js/): WebAssembly build, typed-array API, glTF-Transform transform" js bash js/test.sh
+[ "$skipped" -eq 0 ] || echo "$skipped package checks skipped (the SKIP lines above say why; bash .ci/run installs what they need)"
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
