@@ -188,10 +188,19 @@ bool read_accessor(const tinygltf::Model &m, int index, int width, std::vector<d
         return false;
     }
     size_t size = csize * (size_t)width;
-    out.assign(a.count * (size_t)width, 0.0);
     ElementView v;
     if (a.bufferView >= 0 && !view_range(m, a.bufferView, a.byteOffset, a.count, size, 0, v, error))
         return false;
+    /* an accessor without a bufferView is zeros (and its sparse values):
+       real ones are no longer than the data of the file */
+    size_t bytes = 1024;
+    for (const tinygltf::Buffer &b : m.buffers)
+        bytes += b.data.size();
+    if (a.bufferView < 0 && a.count > bytes) {
+        error = "accessor " + std::to_string(index) + " has no data for its " + std::to_string(a.count) + " elements";
+        return false;
+    }
+    out.assign(a.count * (size_t)width, 0.0); /* both bounds checked: within the file's size */
     for (size_t i = 0; v.base != nullptr && i < a.count; ++i)
         for (int k = 0; k < width; ++k)
             out[i * (size_t)width + (size_t)k] = read_component(v.base + i * v.stride + (size_t)k * csize, a.componentType, a.normalized);
