@@ -2312,10 +2312,10 @@ static void check_check(const fuzz_case *fc)
         /* invalid input, or positions missing: either may be named first */
         REQUIRE(why.result == result || (needs_positions && why.result == MESHFIX_ERROR_POSITIONS_REQUIRED),
                 "meshfix_check_failure.result is not what inspect returned");
-        size_t first_out = (size_t)-1, i;
-        for (i = 0; i < fc->index_count && first_out == (size_t)-1; ++i)
-            if (fc->indices[i] >= fc->vertex_count)
-                first_out = i / 3;
+        size_t first_out = (size_t)-1, j;
+        for (j = 0; j < fc->index_count && first_out == (size_t)-1; ++j)
+            if (fc->indices[j] >= fc->vertex_count)
+                first_out = j / 3;
         /* an index out of range may be located: its triangle */
         REQUIRE(why.requirement == 0 && why.edge[0] == 0xFFFFFFFFu && why.edge[1] == 0xFFFFFFFFu &&
                     (why.triangle == (size_t)-1 ||
@@ -2378,12 +2378,18 @@ static double squared_distance(const double *p, const double *q)
     return d;
 }
 
-static double vertex_distance(const fuzz_case *fc, size_t a, size_t b)
+/* Whether vertices a and b weld: at tolerance 0 equal positions (-0 =
+   +0), else a squared distance within the squared tolerance, summed as
+   meshfix_weld sums it. (The squared distance of doubles around 1e-300
+   underflows to 0: "<= 0" is not equality.) */
+static int vertices_weld(const fuzz_case *fc, size_t a, size_t b, double tolerance)
 {
     double p[3], q[3];
     read_vertex(fc, a, p);
     read_vertex(fc, b, q);
-    return squared_distance(p, q);
+    if (tolerance == 0.0)
+        return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+    return squared_distance(p, q) <= tolerance * tolerance;
 }
 
 /* Weld: every vertex maps to the lowest representative within the
@@ -2396,7 +2402,7 @@ static void check_weld(const fuzz_case *fc)
     meshfix_options o;
     unsigned int *remap;
     size_t unique = 12345, n = fc->vertex_count, v, reps = 0, checked;
-    double tolerance = (double)st->weld_tolerance, t2 = tolerance * tolerance;
+    double tolerance = (double)st->weld_tolerance;
     meshfix_result result;
     expectation e = {0, 0};
     source g;
@@ -2444,7 +2450,7 @@ static void check_weld(const fuzz_case *fc)
     }
     for (v = 0; v < n; ++v) {
         REQUIRE(remap[v] <= v && remap[remap[v]] == remap[v], "weld: remap is not to an earlier representative");
-        REQUIRE(vertex_distance(fc, v, remap[v]) <= t2, "weld: farther than the tolerance");
+        REQUIRE(vertices_weld(fc, v, remap[v], tolerance), "weld: farther than the tolerance");
         reps += remap[v] == v;
     }
     REQUIRE(unique == reps, "weld: unique_count");
@@ -2455,7 +2461,7 @@ static void check_weld(const fuzz_case *fc)
         size_t x = n <= 512 ? checked : below(&g, (uint32_t)n), r;
         for (r = 0; r < remap[x]; ++r)
             if (remap[r] == r)
-                REQUIRE(vertex_distance(fc, x, r) > t2,
+                REQUIRE(!vertices_weld(fc, x, r, tolerance),
                         "weld: a lower representative within the tolerance was passed over");
     }
     free(remap);
