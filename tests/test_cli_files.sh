@@ -278,6 +278,27 @@ fix_normals() { # normals negated at random; --fix-normals puts back the input a
 }
 check "OBJ flat vn negated: reported, and --fix-normals writes the original back" fix_normals "$ASSIMP/OBJ/cube_usemtl.obj"
 check "glTF NORMAL negated: reported, and --fix-normals writes the original back" fix_normals "$G/BoxTextured-glTF/BoxTextured.gltf"
+check "glTF NORMAL negated beside TANGENT: --fix-normals puts the normals back, TANGENT.w kept" fix_normals \
+    "$G/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf"
+
+tangent_w() { # TANGENT.w against the texture coordinates: reported, fixed on request
+    local in=$tmp/tw/box/box.gltf
+    rm -rf "$tmp/tw" && mkdir -p "$tmp/tw/s" "$tmp/tw/o" "$tmp/tw/box"
+    cp "$G/BoxTextured-glTF/"*.png "$tmp/tw/box/" && cp "$G/BoxTextured-glTF/"*.png "$tmp/tw/s/"
+    $CHECK add-tangents "$G/BoxTextured-glTF/BoxTextured.gltf" "$in" | grep -q 'added to 1 ' || return 1
+    $CHECK flip-normals "$in" "$tmp/tw/s/cube.gltf" 7 0.5 --tangent-w >"$tmp/tw.txt" || return 1
+    local negated
+    negated=$(awk '{print $2}' "$tmp/tw.txt")
+    [ "$negated" -gt 0 ] || return 1
+    $M --json --inspect "$in" >"$tmp/tw0.json" && [ "$(json "$tmp/tw0.json" 'r.files[0].gltf.tangents_disagree')" = 0 ] ||
+        { echo "the original's TANGENT.w disagree"; return 1; }
+    $M --json --inspect "$tmp/tw/s/cube.gltf" >"$tmp/tw1.json" || return 1
+    [ "$(json "$tmp/tw1.json" 'r.files[0].gltf.tangents_disagree')" = "$negated" ] || { echo "not $negated reported"; return 1; }
+    $M --json --fix-normals "$tmp/tw/s/cube.gltf" "$tmp/tw/o/cube.gltf" >"$tmp/tw2.json" || return 1
+    [ "$(json "$tmp/tw2.json" 'r.files[0].gltf.tangents_negated')" = "$negated" ] || return 1
+    $CHECK compare "$in" "$tmp/tw/o/cube.gltf" | grep -q ' flipped 0 normals 0$' && no_new_errors "$in" "$tmp/tw/o/cube.gltf"
+}
+check "glTF TANGENT.w negated: reported against the texture coordinates, --fix-normals puts it back" tangent_w
 
 draco() {
     mkdir -p "$tmp/dr"

@@ -14,9 +14,13 @@
 //       writes IN with about FRACTION of its faces reversed (STL: vertex
 //       order only, the stored normals kept); prints how many. glTF: indexed
 //       triangle lists only, buffers rewritten beside OUT.
-//   node tests/cli/meshcheck.js flip-normals IN OUT SEED FRACTION
+//   node tests/cli/meshcheck.js flip-normals IN OUT SEED FRACTION [--tangent-w]
 //       writes IN with about FRACTION of its stored normals negated (OBJ vn
-//       lines; glTF NORMAL elements of float accessors, buffers beside OUT).
+//       lines; glTF NORMAL elements of float accessors, buffers beside OUT;
+//       with --tangent-w, TANGENT.w instead).
+//   node tests/cli/meshcheck.js add-tangents IN.gltf OUT.gltf
+//       adds TANGENT (xyz from the texture coordinates TEXCOORD_0, w the
+//       handedness) to the primitives that have NORMAL and no TANGENT.
 //   node tests/cli/meshcheck.js colours MARK.ply
 //       prints "red R amber A other O": the faces of a --mark file by colour.
 //   node tests/cli/meshcheck.js big-endian IN.ply OUT.ply
@@ -400,6 +404,7 @@ function compareGltf(fa, fb, allowNormals) {
                 const x = decode(a, p.attributes[name]), y = decode(b, q.attributes[name]);
                 if (same(x, y)) continue;
                 if (!allowNormals || !['NORMAL', 'TANGENT'].includes(name) || !x.every((v, k) => v === y[k] || v === -y[k])) fail(`${where}: ${name} differs`);
+                if (name === 'TANGENT') for (let k = 3; k < x.length; k += 4) r.tangents = (r.tangents || 0) + (x[k] !== y[k]);
                 if (name === 'NORMAL') for (let k = 0; k < x.length; k += 3) r.normals += x[k] !== y[k] || x[k + 1] !== y[k + 1] || x[k + 2] !== y[k + 2];
             }
             (p.targets || []).forEach((t, ti) => {
@@ -466,7 +471,7 @@ function writeGltf(g, fin, fout) {
     } else fs.writeFileSync(fout, JSON.stringify(g.json, null, 2));
 }
 
-function flipNormals(fin, fout, rnd, fraction) {
+function flipNormals(fin, fout, rnd, fraction, tangentW) {
     if (ext(fin) === 'obj') {
         const r = scrambleText(fs.readFileSync(fin).toString('latin1'), rnd, fraction, (l) => tokens(l)[0] === 'vn',
             (l) => l.replace(/-?[0-9.]+(e[-+]?[0-9]+)?/gi, (x) => (Number(x) === 0 ? x : x[0] === '-' ? x.slice(1) : `-${x}`)));
@@ -478,15 +483,15 @@ function flipNormals(fin, fout, rnd, fraction) {
     const done = new Set();
     for (const m of g.json.meshes || [])
         for (const p of m.primitives) {
-            const index = p.attributes.NORMAL;
+            const index = tangentW ? p.attributes.TANGENT : p.attributes.NORMAL;
             if (index === undefined || done.has(index)) continue;
             done.add(index);
             const a = g.json.accessors[index], v = g.json.bufferViews[a.bufferView];
             if (a.componentType !== 5126 || a.sparse) continue;
-            const data = g.buffers[v.buffer].data, stride = v.byteStride || 12;
+            const data = g.buffers[v.buffer].data, stride = v.byteStride || (tangentW ? 16 : 12);
             for (let i = 0; i < a.count; ++i) {
                 if (rnd() >= fraction) continue;
-                for (let k = 0; k < 3; ++k) {
+                for (let k = tangentW ? 3 : 0; k < (tangentW ? 4 : 3); ++k) {
                     const o = (v.byteOffset || 0) + (a.byteOffset || 0) + i * stride + 4 * k;
                     const x = data.readFloatLE(o);
                     if (x !== 0) data.writeFloatLE(-x, o);
@@ -509,6 +514,49 @@ function reverseTokens(line, from, n) {
         at = m.index + m[0].length;
     });
     return out + line.slice(at);
+}
+
+function addTangents(fin, fout) {
+    const g = loadGltf(fin);
+    const sub3 = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let added = 0;
+    for (const m of g.json.meshes)
+        for (const p of m.primitives) {
+            if (!p.attributes.NORMAL || !p.attributes.TEXCOORD_0 || p.attributes.TANGENT) continue;
+            const pos = decode(g, p.attributes.POSITION), nor = decode(g, p.attributes.NORMAL), uv = decode(g, p.attributes.TEXCOORD_0);
+            const n = pos.length / 3, t = new Array(3 * n).fill(0), b = new Array(3 * n).fill(0);
+            const v = (arr, i, w) => arr.slice(w * i, w * i + w);
+            for (const [i0, i1, i2] of triangles(g, p).t) {
+                const e1 = sub3(v(pos, i1, 3), v(pos, i0, 3)), e2 = sub3(v(pos, i2, 3), v(pos, i0, 3));
+                const du1 = uv[2 * i1] - uv[2 * i0], dv1 = uv[2 * i1 + 1] - uv[2 * i0 + 1];
+                const du2 = uv[2 * i2] - uv[2 * i0], dv2 = uv[2 * i2 + 1] - uv[2 * i0 + 1];
+                const r = du1 * dv2 - dv1 * du2;
+                if (r === 0) continue;
+                for (const i of [i0, i1, i2])
+                    for (let k = 0; k < 3; ++k) {
+                        t[3 * i + k] += (e1[k] * dv2 - e2[k] * dv1) / r;
+                        b[3 * i + k] += (e2[k] * du1 - e1[k] * du2) / r;
+                    }
+            }
+            const out = Buffer.alloc(16 * n);
+            for (let i = 0; i < n; ++i) {
+                const N = v(nor, i, 3), T = v(t, i, 3), B = v(b, i, 3);
+                const w = dot(cross(N, T), B) < 0 ? -1 : 1;
+                [...T, w].forEach((x, k) => out.writeFloatLE(x, 16 * i + 4 * k));
+            }
+            const buffer = g.buffers[0];
+            const offset = Math.ceil(buffer.data.length / 4) * 4;
+            buffer.data = Buffer.concat([buffer.data, Buffer.alloc(offset - buffer.data.length), out]);
+            g.json.buffers[0].byteLength = buffer.data.length;
+            g.json.bufferViews.push({ buffer: 0, byteOffset: offset, byteLength: out.length, target: 34962 });
+            g.json.accessors.push({ bufferView: g.json.bufferViews.length - 1, componentType: 5126, count: n, type: 'VEC4' });
+            p.attributes.TANGENT = g.json.accessors.length - 1;
+            added++;
+        }
+    writeGltf(g, fin, fout);
+    return added;
 }
 
 // ---- scrambling text formats ----
@@ -534,7 +582,7 @@ function main() {
             : f === 'ply' ? comparePly(a, b, allow)
             : f === 'stl' ? compareStl(a, b, allow)
             : compareGltf(x, y, allow);
-        console.log(`faces ${r.faces} flipped ${r.flipped} normals ${r.normals}`);
+        console.log(`faces ${r.faces} flipped ${r.flipped} normals ${r.normals}${r.tangents ? ` tangents ${r.tangents}` : ''}`);
     } else if (command === 'scramble') {
         const rnd = random(Number(z)), fraction = Number(w), f = ext(x);
         const data = fs.readFileSync(x);
@@ -554,7 +602,9 @@ function main() {
         fs.writeFileSync(y, r.data);
         console.log(`scrambled ${r.count}`);
     } else if (command === 'flip-normals') {
-        console.log(`negated ${flipNormals(x, y, random(Number(z)), Number(w))}`);
+        console.log(`negated ${flipNormals(x, y, random(Number(z)), Number(w), process.argv.includes('--tangent-w'))}`);
+    } else if (command === 'add-tangents') {
+        console.log(`tangents added to ${addTangents(x, y)} primitives`);
     } else if (command === 'colours') {
         const face = parsePly(fs.readFileSync(x)).elements.find((e) => e.name === 'face');
         const c = { red: 0, amber: 0, other: 0 };

@@ -49,16 +49,20 @@ struct PrimitiveTriangles {
     std::vector<uint32_t> corners; /* 3 per triangle, as the spec defines them for the mode */
 };
 
-/* A flat normal: the element of a NORMAL accessor (and the TANGENT
-   accessor of the same vertices, -1 when none). */
+/* A flat normal: the element of a NORMAL accessor, the TANGENT and
+   TEXCOORD (of the normal texture) accessors of the same vertices (-1 when
+   none), and the first triangle that uses it, by its vertices in the
+   primitive. */
 struct NormalSlot {
-    int normal, tangent;
+    int normal, tangent, texcoord;
     uint32_t element;
+    uint32_t corners[3];
 };
 
 class GltfFile : public MeshFile {
 public:
     const char *format() const override { return binary ? "glb" : "gltf"; }
+    void review(size_t unit, const Changes &changes) override;
     void apply(size_t unit, const Changes &changes) override;
     bool write(const std::string &path, const std::string &target, std::string &error) override;
     std::vector<std::string> companions() const override;
@@ -75,6 +79,8 @@ public:
     std::vector<std::pair<int, int>> mirrored; /* node, mesh */
     std::vector<int> double_sided;
     size_t accessors_cloned = 0, lists_written = 0, indices_added = 0, normals_negated = 0, tangents_negated = 0;
+    size_t tangents_disagree = 0;
+    std::vector<std::vector<unsigned char>> unit_negate_w; /* per flat normal: TANGENT.w to negate */
     size_t primitives_skipped = 0;
 };
 
@@ -371,13 +377,18 @@ struct MeshReader {
             const std::vector<double> &n = values[normal->second];
             auto tangent = p.attributes.find("TANGENT");
             int tangent_accessor = tangent != p.attributes.end() && negatable(tangent->second, 4, mesh) ? tangent->second : -1;
+            int set = p.material >= 0 && (size_t)p.material < file.model.materials.size()
+                          ? file.model.materials[(size_t)p.material].normalTexture.texCoord : 0;
+            auto texcoord = p.attributes.find("TEXCOORD_" + std::to_string(std::max(set, 0)));
+            int texcoord_accessor = texcoord != p.attributes.end() ? texcoord->second : -1;
             for (size_t c = 0; c < pt.corners.size(); ++c) {
                 uint32_t element = pt.corners[c];
                 if (3 * (size_t)element + 2 >= n.size())
                     continue;
                 auto found = slot_of.emplace(std::make_pair(normal->second, element), (uint32_t)slots.size());
                 if (found.second) {
-                    slots.push_back({normal->second, tangent_accessor, element});
+                    const uint32_t *t = &pt.corners[c - c % 3];
+                    slots.push_back({normal->second, tangent_accessor, texcoord_accessor, element, {t[0], t[1], t[2]}});
                     u.slot_normals.insert(u.slot_normals.end(), {(float)n[3 * element], (float)n[3 * element + 1], (float)n[3 * element + 2]});
                 }
                 u.slot_faces.push_back({found.first->second, (uint32_t)(pt.first_triangle + c / 3)});
@@ -643,16 +654,70 @@ void GltfFile::apply(size_t unit, const Changes &changes)
         p.mode = TINYGLTF_MODE_TRIANGLES;
     }
     for (size_t k = 0; k < units[unit].flat_normals.size(); ++k) {
-        if (!changes.negate_flat[k])
-            continue;
         const NormalSlot &s = unit_slots[unit][units[unit].flat_normals[k].slot];
-        negate_floats(model, s.normal, s.element, 0, 3);
-        ++normals_negated;
-        if (s.tangent >= 0 && s.element < model.accessors[(size_t)s.tangent].count) {
-            negate_floats(model, s.tangent, s.element, 3, 1); /* the bitangent keeps its direction */
-            ++tangents_negated;
+        if (changes.negate_flat[k]) {
+            negate_floats(model, s.normal, s.element, 0, 3);
+            ++normals_negated;
+            changed = true;
         }
-        changed = true;
+        if (changes.fix_normals && unit_negate_w[unit][k]) {
+            negate_floats(model, s.tangent, s.element, 3, 1);
+            ++tangents_negated;
+            changed = true;
+        }
+    }
+}
+
+/* TANGENT.w of a flat vertex is the handedness of its tangent frame: the
+   bitangent cross(normal, tangent.xyz) * w must run the way the texture's
+   v does across the face. That direction, from the face's positions and
+   texture coordinates, does not depend on the winding, so w is checked
+   against the normal as it will be (negated when it disagrees with its
+   face). */
+void GltfFile::review(size_t unit, const Changes &changes)
+{
+    const Unit &u = units[unit];
+    std::map<int, std::vector<double>> values;
+    auto read = [&](int accessor, int width) -> const std::vector<double> & {
+        auto found = values.find(accessor);
+        if (found != values.end())
+            return found->second;
+        std::string ignored;
+        std::vector<double> &v = values[accessor];
+        if (!read_accessor(model, accessor, width, v, ignored))
+            v.clear();
+        return v;
+    };
+    unit_negate_w.resize(units.size());
+    unit_negate_w[unit].assign(u.flat_normals.size(), 0);
+    for (size_t k = 0; k < u.flat_normals.size(); ++k) {
+        const FlatNormal &fn = u.flat_normals[k];
+        const NormalSlot &s = unit_slots[unit][fn.slot];
+        if (s.tangent < 0 || s.texcoord < 0)
+            continue;
+        const std::vector<double> &tangents = read(s.tangent, 4), &uv = read(s.texcoord, 2);
+        if (4 * (size_t)s.element + 3 >= tangents.size() || 2 * (size_t)std::max(std::max(s.corners[0], s.corners[1]), s.corners[2]) + 1 >= uv.size())
+            continue;
+        const double *p[3];
+        for (int i = 0; i < 3; ++i)
+            p[i] = &u.positions[3 * (size_t)u.indices[3 * (size_t)fn.face + (size_t)i]];
+        double du1 = uv[2 * s.corners[1]] - uv[2 * s.corners[0]], dv1 = uv[2 * s.corners[1] + 1] - uv[2 * s.corners[0] + 1];
+        double du2 = uv[2 * s.corners[2]] - uv[2 * s.corners[0]], dv2 = uv[2 * s.corners[2] + 1] - uv[2 * s.corners[0] + 1];
+        double r = du1 * dv2 - dv1 * du2, bitangent[3], n[3], dot = 0.0;
+        const double *t = &tangents[4 * (size_t)s.element];
+        for (int i = 0; i < 3; ++i) {
+            bitangent[i] = ((p[2][i] - p[0][i]) * du1 - (p[1][i] - p[0][i]) * du2) * (r < 0 ? -1.0 : 1.0);
+            n[i] = (double)fn.normal[i] * (changes.flat_disagree[k] ? -1.0 : 1.0);
+        }
+        if (r == 0.0)
+            continue;
+        double c[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+        for (int i = 0; i < 3; ++i)
+            dot += c[i] * bitangent[i];
+        if (dot != 0.0 && (dot < 0.0) != (t[3] < 0.0)) {
+            ++tangents_disagree;
+            unit_negate_w[unit][k] = 1;
+        }
     }
 }
 
@@ -762,9 +827,12 @@ std::vector<std::string> GltfFile::notes() const
         lines.push_back("note: " + std::to_string(accessors_cloned) + " shared index accessors cloned, " +
                         std::to_string(lists_written) + " strips or fans written as triangle lists, " +
                         std::to_string(indices_added) + " non-indexed primitives given indices");
-    if (normals_negated != 0)
+    if (normals_negated + tangents_negated != 0)
         lines.push_back("note: " + std::to_string(normals_negated) + " NORMAL and " + std::to_string(tangents_negated) +
                         " TANGENT.w values negated");
+    if (tangents_disagree != tangents_negated)
+        lines.push_back("note: " + std::to_string(tangents_disagree) +
+                        " TANGENT.w of flat vertices against their texture coordinates (--fix-normals negates them)");
     return lines;
 }
 
@@ -780,7 +848,8 @@ std::string GltfFile::json_members() const
     s += "],\"index_accessors_cloned\":" + std::to_string(accessors_cloned) +
          ",\"strips_fans_as_lists\":" + std::to_string(lists_written) +
          ",\"indices_added\":" + std::to_string(indices_added) + ",\"normals_negated\":" + std::to_string(normals_negated) +
-         ",\"tangents_negated\":" + std::to_string(tangents_negated) + "}";
+         ",\"tangents_negated\":" + std::to_string(tangents_negated) +
+         ",\"tangents_disagree\":" + std::to_string(tangents_disagree) + "}";
     return s;
 }
 

@@ -329,9 +329,11 @@ void run_job_steps(Job &job, const Settings &s)
     }
     if (job.exit != 0)
         return;
-    if (!s.inspect)
-        for (size_t i = 0; i < job.file->units.size(); ++i)
+    for (size_t i = 0; i < job.file->units.size(); ++i) {
+        job.file->review(i, job.results[i].changes);
+        if (!s.inspect)
             job.file->apply(i, job.results[i].changes);
+    }
     if (!write_outputs(job, s))
         return;
     if (s.check && something_wrong(job))

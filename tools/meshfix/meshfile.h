@@ -50,7 +50,9 @@ struct Unit {
 /* What the repair decided for a unit, per face and per flat normal. */
 struct Changes {
     std::vector<unsigned char> face_flipped;
-    std::vector<unsigned char> negate_flat; /* --fix-normals: flat normals to negate */
+    std::vector<unsigned char> flat_disagree; /* flat normals pointing away from their face as written */
+    std::vector<unsigned char> negate_flat;   /* those to negate (--fix-normals; STL: turned with the facet) */
+    bool fix_normals = false;
 };
 
 /* A loaded file. The formats implement it. */
@@ -59,6 +61,9 @@ public:
     virtual ~MeshFile() = default;
     /* "obj", "off", "stl", "ply", "gltf" or "glb" */
     virtual const char *format() const = 0;
+    /* Looks at what the format alone can check once faces and normals are
+       decided (glTF: TANGENT.w), with --inspect too. */
+    virtual void review(size_t unit, const Changes &changes) { (void)unit, (void)changes; }
     /* Rewrites the flipped faces and negates the normals asked for. */
     virtual void apply(size_t unit, const Changes &changes) = 0;
     /* Writes the file as it now is to `path` (a temporary of the same

@@ -51,6 +51,8 @@ void decide_faces(const Unit &u, UnitResult &r)
 void check_normals(const Unit &u, const Settings &s, UnitResult &r)
 {
     r.changes.negate_flat.assign(u.flat_normals.size(), 0);
+    r.changes.flat_disagree.assign(u.flat_normals.size(), 0);
+    r.changes.fix_normals = s.fix_normals && !s.inspect;
     if (u.flat_normals.empty())
         return;
     std::vector<double> faces = face_normals(u);
@@ -70,6 +72,7 @@ void check_normals(const Unit &u, const Settings &s, UnitResult &r)
             continue;
         }
         r.normals_disagree++;
+        r.changes.flat_disagree[k] = 1;
         if (s.fix_normals && !s.inspect) {
             r.changes.negate_flat[k] = 1;
             r.normals_fixed++;
