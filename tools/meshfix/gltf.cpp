@@ -18,6 +18,7 @@
 #endif
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <set>
@@ -737,6 +738,23 @@ namespace {
 
 void mkdir_one(const std::string &directory) { mkdir(directory.c_str(), 0777); }
 
+/* The file a relative URI names: %XX escapes decoded ("a%20b.bin"). */
+std::string file_of(const std::string &uri)
+{
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        int hi, lo;
+        auto hex = [](char c) { return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1; };
+        if (uri[i] == '%' && i + 2 < uri.size() && (hi = hex(uri[i + 1])) >= 0 && (lo = hex(uri[i + 2])) >= 0) {
+            out += (char)(hi * 16 + lo);
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
 bool safe_relative(const std::string &uri)
 {
     return !uri.empty() && uri[0] != '/' && uri.find("..") == std::string::npos && uri.find(':') == std::string::npos &&
@@ -775,11 +793,11 @@ bool GltfFile::write(const std::string &out, const std::string &target, std::str
         }
     /* images are never rewritten: copy the external ones beside the output */
     for (const tinygltf::Image &i : model.images)
-        if (!i.uri.empty() && !data_uri(i.uri) && !copy_file(in_dir + "/" + i.uri, out_dir + "/" + i.uri, error))
+        if (!i.uri.empty() && !data_uri(i.uri) && !copy_file(in_dir + "/" + file_of(i.uri), out_dir + "/" + file_of(i.uri), error))
             return false;
     if (!changed && to_binary == binary) {
         for (const tinygltf::Buffer &b : model.buffers)
-            if (!b.uri.empty() && !data_uri(b.uri) && !copy_file(in_dir + "/" + b.uri, out_dir + "/" + b.uri, error))
+            if (!b.uri.empty() && !data_uri(b.uri) && !copy_file(in_dir + "/" + file_of(b.uri), out_dir + "/" + file_of(b.uri), error))
                 return false;
         return write_bytes(out, raw, error);
     }
@@ -807,6 +825,14 @@ bool GltfFile::write(const std::string &out, const std::string &target, std::str
         error = "cannot write '" + target + "'";
         return false;
     }
+    /* tinygltf writes a buffer under its URI as it is: give it the name
+       the URI means ("a%20b.bin" is the file "a b.bin") */
+    for (const tinygltf::Buffer &b : copy.buffers)
+        if (!b.uri.empty() && !data_uri(b.uri) && file_of(b.uri) != b.uri &&
+            std::rename((out_dir + "/" + b.uri).c_str(), (out_dir + "/" + file_of(b.uri)).c_str()) != 0) {
+            error = "cannot write '" + file_of(b.uri) + "' beside '" + target + "'";
+            return false;
+        }
     return true;
 }
 
