@@ -3507,6 +3507,17 @@ MESHFIX__PRIVATE void meshfix__add_pair(meshfix__pair *pairs, size_t *count, con
     p->length = MESHFIX_SQRT(from->length * to->length);
 }
 
+/* Two patches that meet at a ring no winding can make consistent (a fin
+   on a surface, a fold) have no relative winding to learn from their
+   other edges either: their pair is marked (length -1) and its sum stays
+   marked, so neither merge joins them. */
+MESHFIX__PRIVATE void meshfix__add_veto(meshfix__pair *pairs, size_t *count, const meshfix__segment *from,
+                                       const meshfix__segment *to)
+{
+    meshfix__add_pair(pairs, count, from, to, 0.0);
+    pairs[*count - 1].length = -1.0;
+}
+
 #define MESHFIX__NEAREST_CANDIDATES 128
 
 /* A segment in a cell: what a search needs to pass over it without
@@ -3885,7 +3896,7 @@ MESHFIX__PRIVATE void meshfix__ring_pairs(const meshfix__geometry *g, double sca
         meshfix__ring_order order;
         double p[3], q[3], axis[3], u[3], v[3], len;
         unsigned int n = 0, cur, i;
-        int k;
+        int k, windable;
         if (!meshfix__is_ring_last(m, h))
             continue;
         cur = h;
@@ -3940,14 +3951,17 @@ MESHFIX__PRIVATE void meshfix__ring_pairs(const meshfix__geometry *g, double sca
             meshfix__edge_segment(g, members[work[(i + 1) % n]], scale, &sb);
             angle[i] = meshfix__local_coherence(&sa, &sb, 0.0);
         }
-        if (n > 2 && !meshfix__ring_windable(angle, n))
-            continue;
+        windable = n <= 2 || meshfix__ring_windable(angle, n);
         for (i = 0; i < n && !(n == 2 && i == 1); ++i) {
             unsigned int next = (i + 1) % n;
             meshfix__segment sa, sb;
             meshfix__edge_segment(g, members[work[i]], scale, &sa);
             meshfix__edge_segment(g, members[work[next]], scale, &sb);
-            if (sa.patch != sb.patch && !meshfix__stacked(&sa, &sb))
+            if (sa.patch == sb.patch)
+                continue;
+            if (!windable)
+                meshfix__add_veto(pairs, pair_count, &sa, &sb);
+            else if (!meshfix__stacked(&sa, &sb))
                 meshfix__add_pair(pairs, pair_count, &sa, &sb, angle[i]);
         }
     }
@@ -3961,8 +3975,10 @@ MESHFIX__PRIVATE size_t meshfix__sum_pairs(meshfix__pair *pairs, meshfix__pair *
     meshfix__sort_pairs(pairs, tmp, n, meshfix__pair_key_before);
     for (k = 0; k < n; ++k) {
         if (out > 0 && pairs[out - 1].a == pairs[k].a && pairs[out - 1].b == pairs[k].b) {
-            pairs[out - 1].c += pairs[k].c;
-            pairs[out - 1].length += pairs[k].length;
+            meshfix__pair *sum = &pairs[out - 1];
+            int veto = sum->length < 0 || pairs[k].length < 0;
+            sum->c = veto ? 0.0 : sum->c + pairs[k].c;
+            sum->length = veto ? -1.0 : sum->length + pairs[k].length;
         } else {
             pairs[out++] = pairs[k];
         }
