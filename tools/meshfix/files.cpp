@@ -7,7 +7,6 @@ extern "C" {
 }
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -159,8 +158,6 @@ std::unique_ptr<MeshFile> load_file(const std::string &path, std::string &error)
 
 namespace {
 
-std::atomic<unsigned> temporaries{0};
-
 /* Every regular file under `directory`, as paths relative to it. */
 void list_files(const std::string &directory, const std::string &prefix, std::vector<std::string> &out)
 {
@@ -210,9 +207,10 @@ bool make_directories(const std::string &base, const std::string &relative)
 
 std::string OutputSet::reserve(const std::string &target, std::string &error)
 {
+    /* mkdir fails when the name is taken, so two runs (or two threads with
+       the same target) never share a temporary */
     for (int k = 0; k < 100; ++k) {
-        std::string directory = target + ".meshfix-" + std::to_string((long)getpid()) + "-" +
-                                std::to_string(temporaries++) + ".tmp";
+        std::string directory = target + ".meshfix-" + std::to_string((long)getpid()) + "-" + std::to_string(k) + ".tmp";
         if (mkdir(directory.c_str(), 0700) == 0) {
             items.push_back({target, directory});
             return directory + "/" + base_name(target);

@@ -199,9 +199,10 @@ void collect(const std::string &directory, const std::string &relative, std::vec
 
 bool gltf_format(const std::string &f) { return f == "gltf" || f == "glb"; }
 
-/* The jobs of the command line, every argument checked; false after a
-   one-line message. */
-bool plan(const CommandLine &c, std::vector<Job> &jobs)
+/* A job per input file (directories walked), named for the output and
+   --mark directories when there are several; false after a one-line
+   message. */
+bool expand_inputs(const CommandLine &c, std::vector<Job> &jobs)
 {
     bool batch = !c.output_dir.empty() || c.inputs.size() > 1;
     for (const std::string &input : c.inputs) {
@@ -228,6 +229,13 @@ bool plan(const CommandLine &c, std::vector<Job> &jobs)
             jobs.push_back(std::move(job));
         }
     }
+    return true;
+}
+
+/* Whether every output can be written, before any input is read. */
+bool check_outputs(const CommandLine &c)
+{
+    bool batch = !c.output_dir.empty() || c.inputs.size() > 1;
     std::string error;
     if (!c.output.empty()) {
         std::string in = format_of(c.inputs[0]), out = format_of(c.output);
@@ -488,7 +496,7 @@ int main(int argc, char **argv)
     if (status >= 0)
         return status;
     std::vector<Job> jobs;
-    if (!plan(c, jobs))
+    if (!expand_inputs(c, jobs) || !check_outputs(c))
         return 1;
     const Settings &s = c.settings;
     bool batch = jobs.size() > 1 || !c.output_dir.empty();
