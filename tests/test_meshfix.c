@@ -609,6 +609,15 @@ static void test_allocators(void)
             CHECK_EQ(a.allocations, 0);
             CHECK_EQ(r.mesh.edges_inconsistent, 0);
             free(scratch);
+            /* without scratch: at most two allocations (topology, then the
+               geometric stage), both given back */
+            memset(&a, 0, sizeof(a));
+            o.memory.scratch = NULL;
+            o.memory.scratch_size = 0;
+            CHECK_EQ(meshfix_orient(NULL, two.indices, two.index_count, two.positions, two.vertex_count, 12, &o, &r,
+                                    NULL), MESHFIX_OK);
+            CHECK(a.allocations >= 1 && a.allocations <= 2);
+            CHECK_EQ(a.frees, a.allocations);
         }
         o.memory.scratch = NULL;
         o.policy = MESHFIX_POLICY_MAJORITY; /* the topology alone: its exact need */
