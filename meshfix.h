@@ -6258,6 +6258,11 @@ MESHFIX_API size_t meshfix_summary(const meshfix_report *r, char *buffer, size_t
         meshfix__say_count(&l, r->mesh.triangles, "triangle", "triangles");
         meshfix__say(&l, ", ");
         meshfix__say_count(&l, r->mesh.patches, "patch", "patches");
+        if (r->mesh.triangles_degenerate != 0) { /* no patch for them: say why */
+            meshfix__say(&l, ", ");
+            meshfix__say_number(&l, r->mesh.triangles_degenerate);
+            meshfix__say(&l, " degenerate");
+        }
         meshfix__say(&l, ")");
         break;
     case MESHFIX_VERDICT_REPAIRED:
