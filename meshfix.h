@@ -616,6 +616,7 @@ MESHFIX_API const char *meshfix_verdict_string(meshfix_verdict verdict);
 #define MESHFIX__TRI_NOT_MANIFOLD 1024u /* has an edge shared by three or more */
 #define MESHFIX__TRI_SEAM      2048u /* closes a cycle of contradicting edges */
 #define MESHFIX__TRI_NON_FINITE 4096u /* a corner is NaN or infinite: no geometry */
+#define MESHFIX__TRI_NO_AREA   8192u /* finite, distinct corners on one line (in double) */
 /* patch bits */
 #define MESHFIX__PATCH_OPEN           1u /* a boundary edge or an odd share of a ring */
 #define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
@@ -920,10 +921,26 @@ MESHFIX__PRIVATE const float *meshfix__position(const meshfix__mesh *m, unsigned
 }
 
 
+/* Whether the corners of a triangle span an area, in double. */
+MESHFIX__PRIVATE int meshfix__spans_area(const float *a, const float *b, const float *c)
+{
+    double u[3], v[3], x, y, z;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        u[k] = (double)b[k] - (double)a[k];
+        v[k] = (double)c[k] - (double)a[k];
+    }
+    x = u[1] * v[2] - u[2] * v[1];
+    y = u[2] * v[0] - u[0] * v[2];
+    z = u[0] * v[1] - u[1] * v[0];
+    return x * x + y * y + z * z > 0.0;
+}
+
 /* Marks triangles that repeat a vertex (no topology) and, with positions,
    triangles with a NaN or infinite corner (no geometry: every geometric
    stage skips them, so no NaN reaches a comparison, a bin or a loop
-   bound). Returns the degenerate count. */
+   bound) and those without an area (asked by every geometric stage, so
+   asked once). Returns the degenerate count. */
 MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
 {
     size_t t, count = 0;
@@ -935,6 +952,9 @@ MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
                                       meshfix__is_finite_point(meshfix__position(m, v[1])) &&
                                       meshfix__is_finite_point(meshfix__position(m, v[2]))))
             bits |= MESHFIX__TRI_NON_FINITE;
+        else if (m->positions != NULL && !degenerate &&
+                 !meshfix__spans_area(meshfix__position(m, v[0]), meshfix__position(m, v[1]), meshfix__position(m, v[2])))
+            bits |= MESHFIX__TRI_NO_AREA;
         m->tri_bits[t] = (unsigned short)bits;
         count += (size_t)degenerate;
     }
@@ -994,6 +1014,34 @@ MESHFIX__PRIVATE void meshfix__sort_ids(unsigned int *ids, size_t n, meshfix__be
         ids[0] = ids[i];
         ids[i] = x;
         meshfix__sift_down(ids, 0, i, before, context);
+    }
+}
+
+/* Sorts n values by their 32-bit keys, stably: four passes of a byte
+   each, between (keys, values) and the scratch pair, so the result ends
+   where it started. */
+MESHFIX__PRIVATE void meshfix__radix_sort(unsigned int *keys, unsigned int *values, unsigned int *scratch_keys,
+                                          unsigned int *scratch_values, size_t n)
+{
+    unsigned int *from_keys = keys, *from_values = values, *to_keys = scratch_keys, *to_values = scratch_values, *x;
+    size_t count[256], i, sum;
+    int shift;
+    for (shift = 0; shift < 32; shift += 8) {
+        MESHFIX_MEMSET(count, 0, sizeof(count));
+        for (i = 0; i < n; ++i)
+            count[(from_keys[i] >> shift) & 255u]++;
+        for (i = 0, sum = 0; i < 256; ++i) {
+            size_t c = count[i];
+            count[i] = sum;
+            sum += c;
+        }
+        for (i = 0; i < n; ++i) {
+            size_t to = count[(from_keys[i] >> shift) & 255u]++;
+            to_keys[to] = from_keys[i];
+            to_values[to] = from_values[i];
+        }
+        x = from_keys, from_keys = to_keys, to_keys = x;
+        x = from_values, from_values = to_values, to_values = x;
     }
 }
 
@@ -2085,6 +2133,7 @@ typedef struct meshfix__bvh {
                                   samples must not depend on it */
     float *corners;            /* per slot: 9 floats, the corners in the frame */
     double *cumulative_area;   /* per entry of by_index: its unit's area up to it (sampling) */
+    unsigned int *sort;        /* per slot 4: scratch of the Morton build */
     unsigned int *unit_first;  /* per unit + 1: its first slot */
     unsigned int *unit_root;   /* per unit: its tree's root, NONE until built */
     unsigned int unit_count;
@@ -2532,6 +2581,230 @@ MESHFIX__PRIVATE unsigned int meshfix__build_tree(meshfix__builder *k, unsigned 
     return root;
 }
 
+/* The builder's slots [first, end): each triangle's box and centroid. */
+MESHFIX__PRIVATE void meshfix__builder_slots(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
+                                            unsigned int end)
+{
+    unsigned int i;
+    int c;
+    for (i = first; i < end; ++i) {
+        float corners[9], *slot = b->corners + 9 * (size_t)i;
+        meshfix__load_corners(b, m, b->order[i], corners);
+        MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
+        MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
+        meshfix__grow_box(slot, slot + 3, corners + 3);
+        meshfix__grow_box(slot, slot + 3, corners + 6);
+        for (c = 0; c < 3; ++c)
+            slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
+    }
+}
+
+/* Large units are built the way of HLBVH (Pantaleoni and Luebke, 2010):
+   their triangles sorted once by the Morton codes of their centroids, cut
+   along the codes' bits into clusters of a few dozen, binned SAH over the
+   clusters' boxes and, inside each cluster, splits at the highest bit in
+   which its codes differ (a binary search), boxes fitted on the way back
+   up. SAH alone reads every triangle of a range at every level; the large
+   units are the ones that ask few rays per triangle (a closed shell of a
+   million triangles settles its side with a hundred), and SAH where the
+   boxes are large keeps most of the tree's quality. */
+#define MESHFIX__MORTON_MIN 4096
+#define MESHFIX__CLUSTER 32
+
+typedef struct meshfix__morton {
+    const float *corners;      /* the unit's slots, final */
+    const unsigned int *codes; /* per slot of the unit, sorted */
+    unsigned int first_slot;   /* the unit's: ranges here count from it */
+    meshfix__node *nodes;
+    unsigned int next_node;
+} meshfix__morton;
+
+/* A 10-bit coordinate spread to every third bit. */
+MESHFIX__PRIVATE unsigned int meshfix__spread_bits(unsigned int x)
+{
+    x = (x | (x << 16)) & 0x030000FFu;
+    x = (x | (x << 8)) & 0x0300F00Fu;
+    x = (x | (x << 4)) & 0x030C30C3u;
+    x = (x | (x << 2)) & 0x09249249u;
+    return x;
+}
+
+/* The size of the front part of slots [first, first + count) of a sorted
+   range: those without the highest bit in which its codes differ; half
+   of it when all codes are equal. */
+MESHFIX__PRIVATE unsigned int meshfix__morton_split(const unsigned int *codes, unsigned int first, unsigned int count)
+{
+    unsigned int differ = codes[first] ^ codes[first + count - 1], bit = 1u << 31, lo = first,
+                 hi = first + count - 1;
+    if (differ == 0)
+        return count / 2;
+    while (!(differ & bit))
+        bit >>= 1;
+    /* codes[lo] lacks the bit, codes[hi] has it */
+    while (lo + 1 < hi) {
+        unsigned int mid = lo + (hi - lo) / 2;
+        if (codes[mid] & bit)
+            hi = mid;
+        else
+            lo = mid;
+    }
+    return hi - first;
+}
+
+/* The node over slots [first, first + count) (unit-relative) and the box
+   around them: the largest part is split until there are four or all are
+   leaves. Each child's codes agree in one more bit than its node's, or
+   it is half of a run of equal codes: at most 30 + 16 levels. */
+MESHFIX__PRIVATE unsigned int meshfix__morton_node(meshfix__morton *k, unsigned int first, unsigned int count,
+                                                  float box[6])
+{
+    unsigned int index = k->next_node++, part_first[MESHFIX__WIDTH], part_count[MESHFIX__WIDTH], split, i;
+    meshfix__node *node = &k->nodes[index];
+    int n = 1, c, best;
+    part_first[0] = first;
+    part_count[0] = count;
+    while (n < MESHFIX__WIDTH) {
+        for (c = 0, best = -1; c < n; ++c)
+            if (part_count[c] > MESHFIX__LEAF && (best < 0 || part_count[c] > part_count[best]))
+                best = c;
+        if (best < 0)
+            break;
+        split = meshfix__morton_split(k->codes, part_first[best], part_count[best]);
+        part_first[n] = part_first[best] + split;
+        part_count[n] = part_count[best] - split;
+        part_count[best] = split;
+        n++;
+    }
+    meshfix__empty_node(node);
+    meshfix__empty_box(box);
+    for (c = 0; c < n; ++c) {
+        float child[6];
+        unsigned int target = k->first_slot + part_first[c], leaf = part_count[c] <= MESHFIX__LEAF ? part_count[c] : 0u;
+        if (leaf != 0) {
+            meshfix__empty_box(child);
+            for (i = 0; i < 9 * leaf; i += 3)
+                meshfix__grow_box(child, child + 3, k->corners + 9 * (size_t)part_first[c] + i);
+        } else {
+            target = meshfix__morton_node(k, part_first[c], part_count[c], child);
+        }
+        meshfix__set_child(node, c, target, leaf, child, child + 3);
+        meshfix__grow_box(box, box + 3, child);
+        meshfix__grow_box(box, box + 3, child + 3);
+    }
+    return index;
+}
+
+/* Cuts the sorted range [first, first + count) along its codes' bits into
+   clusters of at most MESHFIX__CLUSTER slots, writing where each starts.
+   A piece that would make a cluster smaller than a leaf joins the one
+   before: every cluster but the last has a leaf's worth or more, so there
+   are at most count / MESHFIX__LEAF + 1. */
+MESHFIX__PRIVATE void meshfix__cut_clusters(const unsigned int *codes, unsigned int first, unsigned int count,
+                                           unsigned int *starts, unsigned int *clusters)
+{
+    unsigned int split;
+    if (count > MESHFIX__CLUSTER) {
+        split = meshfix__morton_split(codes, first, count);
+        meshfix__cut_clusters(codes, first, split, starts, clusters);
+        meshfix__cut_clusters(codes, first + split, count - split, starts, clusters);
+        return;
+    }
+    if (*clusters == 0 || (count >= MESHFIX__LEAF && first - starts[*clusters - 1] >= MESHFIX__LEAF))
+        starts[(*clusters)++] = first;
+}
+
+/* The tree over the clusters, then each cluster's leaf replaced by its
+   triangles (a few) or the Morton tree under it. */
+MESHFIX__PRIVATE unsigned int meshfix__cluster_tree(meshfix__morton *k, unsigned int count, unsigned int *free_space)
+{
+    unsigned int clusters = 0, c, *starts = free_space, *ids, node, top_end, root;
+    float *slots;
+    meshfix__builder top;
+    int i;
+    meshfix__cut_clusters(k->codes, 0, count, starts, &clusters);
+    starts[clusters] = count;
+    slots = (float *)(void *)(starts + clusters + 1);
+    ids = (unsigned int *)(void *)(slots + 9 * (size_t)clusters);
+    for (c = 0; c < clusters; ++c) {
+        float *slot = slots + 9 * (size_t)c;
+        unsigned int j;
+        meshfix__empty_box(slot);
+        for (j = 3 * starts[c]; j < 3 * starts[c + 1]; ++j)
+            meshfix__grow_box(slot, slot + 3, k->corners + 3 * (size_t)j);
+        for (i = 0; i < 3; ++i)
+            slot[MESHFIX__SLOT_CENTROID + i] = 0.5f * (slot[i] + slot[3 + i]);
+        ids[c] = c;
+    }
+    top.slots = slots;
+    top.ids = ids;
+    top.nodes = k->nodes;
+    top.next_node = k->next_node;
+    top.leaf = 1;
+    root = meshfix__build_tree(&top, 0, clusters);
+    top_end = k->next_node = top.next_node;
+    for (node = root; node < top_end; ++node)
+        for (i = 0; i < MESHFIX__WIDTH; ++i) {
+            meshfix__node *x = &k->nodes[node];
+            unsigned int first, size;
+            float box[6];
+            if (x->count[i] == 0 || x->count[i] == MESHFIX__EMPTY)
+                continue;
+            c = ids[x->child[i]];
+            first = starts[c];
+            size = starts[c + 1] - first;
+            x->count[i] = (unsigned char)(size <= MESHFIX__LEAF ? size : 0u);
+            x->child[i] = size <= MESHFIX__LEAF ? k->first_slot + first : meshfix__morton_node(k, first, size, box);
+        }
+    return root;
+}
+
+/* The tree of slots [first, end): Morton codes of their centroids in the
+   box of the centroids, sorted with the slots' triangles, corners loaded
+   in that order, then the nodes. Returns its root. */
+MESHFIX__PRIVATE unsigned int meshfix__morton_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
+                                                  unsigned int end)
+{
+    unsigned int n = end - first, i, *order = b->order + first;
+    unsigned int *codes = b->sort + 4 * (size_t)first, *slot_of = codes + n, *scratch = codes + 2 * (size_t)n;
+    float *slots = b->corners + 9 * (size_t)first, low[3] = {1e30f, 1e30f, 1e30f}, high[3] = {-1e30f, -1e30f, -1e30f};
+    double scale[3];
+    meshfix__morton k;
+    int c;
+    /* the corners wait where the unit's nodes will be, until they are
+       moved into code order */
+    float *waiting = (float *)(void *)(b->nodes + first);
+    for (i = 0; i < n; ++i) {
+        float *corners = waiting + 9 * (size_t)i, *centroid = slots + 3 * (size_t)i;
+        meshfix__load_corners(b, m, order[i], corners);
+        for (c = 0; c < 3; ++c)
+            centroid[c] = meshfix__centroid(corners, c);
+        meshfix__grow_box(low, high, centroid);
+    }
+    for (c = 0; c < 3; ++c)
+        scale[c] = high[c] > low[c] ? 1023.0 / ((double)high[c] - (double)low[c]) : 0.0;
+    for (i = 0; i < n; ++i) {
+        const float *centroid = slots + 3 * (size_t)i;
+        unsigned int code = 0;
+        for (c = 0; c < 3; ++c)
+            code |= meshfix__spread_bits((unsigned int)(((double)centroid[c] - (double)low[c]) * scale[c])) << (2 - c);
+        codes[i] = code;
+        slot_of[i] = i;
+    }
+    meshfix__radix_sort(codes, slot_of, scratch, scratch + n, n);
+    /* the triangles in code order: the old order waits in the scratch */
+    MESHFIX_MEMCPY(scratch, order, n * sizeof(unsigned int));
+    for (i = 0; i < n; ++i) {
+        order[i] = scratch[slot_of[i]];
+        MESHFIX_MEMCPY(slots + 9 * (size_t)i, waiting + 9 * (size_t)slot_of[i], 9 * sizeof(float));
+    }
+    k.corners = slots;
+    k.codes = codes;
+    k.first_slot = first;
+    k.nodes = b->nodes;
+    k.next_node = first; /* at most n nodes: its own range (a node has two children or more) */
+    return meshfix__cluster_tree(&k, n, slot_of);
+}
+
 /* Sets up the slots of the triangles with an area, unit by unit (a
    counting sort: each unit's slots in triangle order), and the frame.
    Trees come later, per unit, as rays need them. Returns 0 when out of
@@ -2565,10 +2838,11 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
     b->corners = (float *)meshfix__take(a, 9 * ((size_t)n + MESHFIX__SLOT_PAD), sizeof(float));
     b->by_index = (unsigned int *)meshfix__take(a, n, sizeof(unsigned int));
     b->cumulative_area = (double *)meshfix__take(a, n, sizeof(double));
+    b->sort = (unsigned int *)meshfix__take(a, 4 * (size_t)n, sizeof(unsigned int));
     b->nodes = (meshfix__node *)meshfix__take_aligned(a, (size_t)n + unit_count + 1, sizeof(meshfix__node),
                                                       MESHFIX__NODE_ALIGN);
     if (b->order == NULL || b->by_index == NULL || b->corners == NULL || b->cumulative_area == NULL ||
-        b->nodes == NULL)
+        b->sort == NULL || b->nodes == NULL)
         return 0;
     /* unit_first[u] moves to the end of unit u while slots are placed */
     for (t = 0; t < m->triangle_count; ++t)
@@ -2589,19 +2863,11 @@ MESHFIX__PRIVATE unsigned int meshfix__unit_tree(meshfix__bvh *b, const meshfix_
 {
     unsigned int first = b->unit_first[u], end = b->unit_first[u + 1], i;
     meshfix__builder k;
-    int c;
     if (b->unit_root[u] != MESHFIX__NONE || first == end)
         return b->unit_root[u];
-    for (i = first; i < end; ++i) {
-        float corners[9], *slot = b->corners + 9 * (size_t)i;
-        meshfix__load_corners(b, m, b->order[i], corners);
-        MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
-        MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
-        meshfix__grow_box(slot, slot + 3, corners + 3);
-        meshfix__grow_box(slot, slot + 3, corners + 6);
-        for (c = 0; c < 3; ++c)
-            slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
-    }
+    if (end - first >= MESHFIX__MORTON_MIN)
+        return b->unit_root[u] = meshfix__morton_tree(b, m, first, end);
+    meshfix__builder_slots(b, m, first, end);
     k.slots = b->corners;
     k.ids = b->order;
     k.nodes = b->nodes;
@@ -3168,9 +3434,7 @@ MESHFIX__PRIVATE void meshfix__relative_normal(const meshfix__mesh *m, unsigned 
 
 MESHFIX__PRIVATE int meshfix__has_area(const meshfix__mesh *m, unsigned int t)
 {
-    double n[3], area;
-    meshfix__relative_normal(m, t, n, &area);
-    return area > 0.0;
+    return meshfix__has_geometry(m, t) && !(m->tri_bits[t] & MESHFIX__TRI_NO_AREA);
 }
 
 /* The frame of triangle t relative to its unit's: 1 when reversed. */
@@ -3752,16 +4016,37 @@ MESHFIX__PRIVATE int meshfix__surely_farther(const double middle[3], double half
     return d2 > slack * slack;
 }
 
+/* Whether cell (x, y, z) comes within `radius` of point p: its items'
+   middles lie in it, with a margin for rounding. */
+MESHFIX__PRIVATE int meshfix__cell_within(const meshfix__grid *grid, double x, double y, double z, const double p[3],
+                                         double radius)
+{
+    double cell[3], d2 = 0, slack = radius + 1e-5 * (1.0 + radius) + 1e-9 * grid->cell;
+    int k;
+    cell[0] = x, cell[1] = y, cell[2] = z;
+    for (k = 0; k < 3; ++k) {
+        double low = cell[k] * grid->cell, high = (cell[k] + 1.0) * grid->cell;
+        double out = p[k] < low ? low - p[k] : p[k] > high ? p[k] - high : 0.0;
+        d2 += out * out;
+    }
+    return d2 <= slack * slack;
+}
+
 /* Stage 3: each segment's partner, the segment of another patch that
    runs closest alongside it within `reach`: first in the cells the
    segment touches, then in the margin around them, and at most
    MESHFIX__NEAREST_CANDIDATES segments in all, so that where thousands of
    boundary edges crowd one place (a huge fan, a soup of large triangles)
-   the search stays linear; what it drops is far. */
+   the search stays linear; what it drops is far. A cell whose items'
+   middles are all too far to beat the best so far (meshfix__surely_farther
+   with the longest segment) is not read. */
 MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigned int n, const meshfix__grid *grid,
                                             double reach)
 {
     unsigned int i;
+    double longest_half = 0;
+    for (i = 0; i < n; ++i)
+        longest_half = meshfix__maxd(longest_half, 0.5 * segments[i].length);
     for (i = 0; i < n; ++i) {
         meshfix__segment *s = &segments[i];
         double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = reach;
@@ -3777,14 +4062,27 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
             middle[axis] = 0.5 * (s->p[axis] + s->q[axis]);
         if (!meshfix__cells_usable(lo, hi))
             continue;
-        for (ring = 0; ring < 2; ++ring)
-            for (x = lo[0]; x <= hi[0]; ++x)
-                for (y = lo[1]; y <= hi[1]; ++y)
-                    for (z = lo[2]; z <= hi[2]; ++z) {
+        for (ring = 0; ring < 2; ++ring) {
+            double from[3], to[3];
+            if (ring == 1) {
+                /* the cells of the margin that come near enough to the middle */
+                double radius = half + longest_half + best + 1e-5 * (1.0 + best);
+                for (axis = 0; axis < 3; ++axis) {
+                    from[axis] = meshfix__maxd(lo[axis], MESHFIX_FLOOR((middle[axis] - radius) / grid->cell));
+                    to[axis] = meshfix__mind(hi[axis], MESHFIX_FLOOR((middle[axis] + radius) / grid->cell));
+                }
+            } else {
+                MESHFIX_MEMCPY(from, inner_lo, sizeof(from));
+                MESHFIX_MEMCPY(to, inner_hi, sizeof(to));
+            }
+            for (x = from[0]; x <= to[0]; ++x)
+                for (y = from[1]; y <= to[1]; ++y)
+                    for (z = from[2]; z <= to[2]; ++z) {
                         size_t bucket, j;
                         int inner = x >= inner_lo[0] && x <= inner_hi[0] && y >= inner_lo[1] && y <= inner_hi[1] &&
                                     z >= inner_lo[2] && z <= inner_hi[2];
-                        if (inner != (ring == 0))
+                        if (inner != (ring == 0) ||
+                            !meshfix__cell_within(grid, x, y, z, middle, half + longest_half + best))
                             continue;
                         bucket = meshfix__grid_bucket(grid, x, y, z);
                         for (j = bucket == 0 ? 0 : grid->start[bucket - 1];
@@ -3802,6 +4100,7 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
                             }
                         }
                     }
+        }
         s->partner = best_id;
         s->distance = best;
     }
@@ -5182,6 +5481,7 @@ MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *
         meshfix__add_size(&total, n + MESHFIX__SLOT_PAD, 9 * sizeof(float), &at) &&
         meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, n, sizeof(double), &at) &&
+        meshfix__add_size(&total, n, 4 * sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, MESHFIX__NODE_ALIGN - 16, 1, &at) &&
         meshfix__add_size(&total, n + p + 1, sizeof(meshfix__node), &at) &&
         meshfix__add_size(&total, vis, sizeof(unsigned int), &at) &&

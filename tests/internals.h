@@ -46,7 +46,7 @@ static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, meshfi
     for (t = 0; t < m->triangle_count; ++t)
         units[t] = meshfix__has_area(m, t) ? 0 : MESHFIX__NONE;
     memset(bvh, 0, sizeof(*bvh));
-    make_arena(bvh_arena, (sizeof(meshfix__node) + 9 * sizeof(float) + 32) * (m->triangle_count + 2) + 4096);
+    make_arena(bvh_arena, (sizeof(meshfix__node) + 9 * sizeof(float) + 48) * (m->triangle_count + 2) + 4096);
     meshfix__fit_frame(bvh, m);
     if (!meshfix__prepare_bvh(bvh, m, bvh_arena, units, 1))
         return MESHFIX__NONE;

@@ -823,6 +823,155 @@ static void test_watertight_rays(void)
     mio_free(&g);
 }
 
+/* A tree's structure: every slot in exactly one leaf, every corner inside
+   the box its parent holds for it, at most one node per slot, and the
+   depth within the traversal's bound. */
+typedef struct tree_facts {
+    unsigned char *seen;
+    size_t nodes, deepest, outside;
+} tree_facts;
+
+static void walk_tree(const meshfix__bvh *b, unsigned int node, size_t depth, tree_facts *f)
+{
+    const meshfix__node *n = &b->nodes[node];
+    int c, k;
+    f->nodes++;
+    f->deepest = depth > f->deepest ? depth : f->deepest;
+    for (c = 0; c < MESHFIX__WIDTH; ++c) {
+        unsigned int i;
+        if (n->count[c] == MESHFIX__EMPTY)
+            continue;
+        if (n->count[c] == 0) {
+            walk_tree(b, n->child[c], depth + 1, f);
+            continue;
+        }
+        for (i = n->child[c]; i < n->child[c] + n->count[c]; ++i) {
+            f->seen[i]++;
+            for (k = 0; k < 9; ++k)
+                f->outside += !(b->corners[9 * i + k] >= n->bounds[k % 3][c] &&
+                                b->corners[9 * i + k] <= n->bounds[3 + k % 3][c]);
+        }
+    }
+}
+
+/* Both builders (binned SAH below MESHFIX__MORTON_MIN triangles, Morton
+   clusters above) against brute force: random rays from inside the box,
+   each answered by the tree and by every triangle in turn, for the
+   closest hit and the number of crossings; and the tree's structure. The
+   large models: a sphere alone, and with two stacks of triangles about
+   one point each (one Morton code a stack: split by halving). */
+static void test_trees_against_brute_force(void)
+{
+    int model;
+    for (model = 0; model < 3; ++model) {
+        mio_mesh g;
+        meshfix__mesh m;
+        meshfix__bvh bvh;
+        meshfix__arena arena;
+        meshfix_options o;
+        unsigned char *block;
+        unsigned int *units, root, i;
+        unsigned long long seed = 7 + (unsigned long long)model;
+        size_t wrong = 0, slot, misplaced = 0, t, crossed = 0;
+        tree_facts facts;
+        memset(&g, 0, sizeof(g));
+        if (model == 0)
+            CHECK(gen_sphere(&g, 20, 30, 0, 0, 0, 1)); /* SAH */
+        else if (model == 1)
+            CHECK(gen_sphere(&g, 90, 140, 0.5f, 0, 0, 2)); /* Morton */
+        else {
+            /* a sphere and two stacks of 600 triangles turned about one
+               centroid each: within a stack one code (split by halving);
+               few enough that a ray through one stays within
+               MESHFIX__RAY_WORK nodes */
+            size_t sphere_vertices, sphere_indices, v;
+            CHECK(gen_sphere(&g, 40, 60, 0, 0, 0, 0.5f));
+            sphere_vertices = g.vertex_count, sphere_indices = g.index_count;
+            g.vertex_count += 3600, g.index_count += 3600;
+            g.positions = (float *)realloc(g.positions, 3 * g.vertex_count * sizeof(float));
+            g.indices = (unsigned int *)realloc(g.indices, g.index_count * sizeof(unsigned int));
+            for (t = 0; t < 1200; ++t) {
+                double a = 0.01 * (double)t, b = 0.007 * (double)t, centre = t < 600 ? -1.0 : 1.0;
+                double d[3], e[3];
+                int k;
+                d[0] = 0.05 * cos(a), d[1] = 0.05 * sin(a), d[2] = 0.015 * cos(b);
+                e[0] = -0.01 * sin(b), e[1] = 0.01 * cos(a), e[2] = 0.04;
+                v = sphere_vertices + 3 * t;
+                for (k = 0; k < 3; ++k) {
+                    double c = k == 0 ? centre : 0.0;
+                    g.positions[3 * v + k] = (float)(c + d[k]);
+                    g.positions[3 * v + 3 + k] = (float)(c + e[k]);
+                    g.positions[3 * v + 6 + k] = (float)(c - d[k] - e[k]);
+                    g.indices[sphere_indices + 3 * t + k] = (unsigned int)(v + k);
+                }
+            }
+        }
+        memset(&o, 0, sizeof(o));
+        block = bind_mesh(&m, &o, g.indices, g.index_count, g.positions, g.vertex_count);
+        units = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
+        root = whole_tree(&bvh, &m, &arena, units);
+        CHECK(root != MESHFIX__NONE);
+        facts.seen = (unsigned char *)calloc(bvh.count, 1);
+        facts.nodes = facts.deepest = facts.outside = 0;
+        walk_tree(&bvh, root, 1, &facts);
+        for (slot = 0; slot < bvh.count; ++slot)
+            misplaced += facts.seen[slot] != 1;
+        for (i = 0; i < 3000; ++i) {
+            float from[3], d[3], t_brute = 1e30f;
+            unsigned int hits_brute = 0;
+            meshfix__ray ray;
+            meshfix__query q;
+            meshfix__crossings crossings;
+            int k;
+            /* every other ray aimed at a triangle's middle */
+            slot = (size_t)(gen_uniform(&seed) * bvh.count);
+            for (k = 0; k < 3; ++k) {
+                from[k] = bvh.low[k] + (float)gen_uniform(&seed) * (bvh.high[k] - bvh.low[k]);
+                d[k] = i % 2 ? (bvh.corners[9 * slot + k] + bvh.corners[9 * slot + 3 + k] + bvh.corners[9 * slot + 6 + k]) /
+                                       3.0f - from[k]
+                             : (float)gen_uniform(&seed) - 0.5f;
+            }
+            meshfix__setup_ray(&ray, from, d, 0.0f, 1e30f);
+            crossings.halves = crossings.vertex_count = 0;
+            for (slot = 0; slot < bvh.count; ++slot) {
+                /* the leaves' own test, one slot at a time: the same float
+                   operations even where -ffast-math reorders the scalar test */
+                float hit_t[4];
+                int zeros[4];
+                if (meshfix__hit_slots(&ray, bvh.corners + 9 * slot, 1, hit_t, zeros)) {
+                    t_brute = hit_t[0] < t_brute ? hit_t[0] : t_brute;
+                    meshfix__count_crossing(&crossings, hit_t[0], zeros[0]);
+                }
+            }
+            hits_brute = (crossings.halves + 1) / 2;
+            crossed += hits_brute;
+            q.skip = MESHFIX__NONE;
+            q.mode = MESHFIX__CLOSEST_HIT;
+            if (meshfix__trace(&bvh, root, &ray, &q) != (t_brute < 1e30f) || (t_brute < 1e30f && q.t != t_brute))
+                wrong++;
+            q.mode = MESHFIX__COUNT_HITS;
+            meshfix__trace(&bvh, root, &ray, &q);
+            wrong += q.hits != hits_brute;
+        }
+        printf("    %u triangles (%s): %lu nodes, depth %lu; 3000 rays, %lu crossings, %lu answers unlike brute "
+               "force\n",
+               bvh.count, bvh.count >= MESHFIX__MORTON_MIN ? "Morton clusters" : "binned SAH", (unsigned long)facts.nodes,
+               (unsigned long)facts.deepest, (unsigned long)crossed, (unsigned long)wrong);
+        CHECK(crossed > 1500);
+        CHECK_EQ(misplaced, 0);
+        CHECK_EQ(facts.outside, 0);
+        CHECK(facts.nodes <= bvh.count);
+        CHECK(facts.deepest <= MESHFIX__BVH_LEVELS);
+        CHECK_EQ(wrong, 0);
+        CHECK((model == 0) == (bvh.count < MESHFIX__MORTON_MIN));
+        free(facts.seen);
+        free(arena.base);
+        free(units);
+        free(block);
+        mio_free(&g);
+    }
+}
+
 static const test_case tests[] = {
     {"generated closed models cut into unwelded patches with gaps", test_cut_generated},
     {"real closed models cut into unwelded patches with gaps", test_cut_real},
@@ -837,6 +986,7 @@ static const test_case tests[] = {
     {"AUTO with 2 and 4 real threads gives the single-threaded result", test_threads_identical},
     {"weld: exact, tolerance, -0, NaN", test_weld},
     {"watertight rays through shared vertices and edges", test_watertight_rays},
+    {"trees of both builders answer as brute force does", test_trees_against_brute_force},
 };
 
 int main(int argc, char **argv)
