@@ -3725,15 +3725,21 @@ MESHFIX__PRIVATE double meshfix__point_segment_distance(const double x[3], const
 /* How far edge f is from running along edge e: the mean distance of e's
    two ends and middle from f. The paper takes the shortest distance, but
    across a gap the neighbours of an edge's true counterpart touch its ends
-   just as closely; this measure picks the edge that runs alongside. */
-MESHFIX__PRIVATE double meshfix__segment_distance(const meshfix__segment *e, const meshfix__segment *f)
+   just as closely; this measure picks the edge that runs alongside. Where
+   it surely exceeds `limit`, something above `limit` is returned sooner. */
+MESHFIX__PRIVATE double meshfix__segment_distance(const meshfix__segment *e, const meshfix__segment *f, double limit)
 {
-    double mid[3];
+    double mid[3], middle_distance;
     int k;
     for (k = 0; k < 3; ++k)
         mid[k] = 0.5 * (e->p[k] + e->q[k]);
-    return (meshfix__point_segment_distance(e->p, f) + meshfix__point_segment_distance(e->q, f) +
-            meshfix__point_segment_distance(mid, f)) / 3.0;
+    /* the distance to a segment is convex: the ends' mean is at least the
+       middle's, and so is the measure (the margin covers rounding) */
+    middle_distance = meshfix__point_segment_distance(mid, f);
+    if (middle_distance > limit + 1e-12 * (1.0 + limit))
+        return middle_distance;
+    return (meshfix__point_segment_distance(e->p, f) + meshfix__point_segment_distance(e->q, f) + middle_distance) /
+           3.0;
 }
 
 MESHFIX__PRIVATE double meshfix__local_coherence(const meshfix__segment *e, const meshfix__segment *f, double d)
@@ -3999,15 +4005,17 @@ MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix
 }
 
 /* Whether the segment of `item` lies farther than `best` from the one
-   with this middle and half length, by their middles alone: every point
-   of a segment is within half its length of its middle, so the mean
-   distance of one's points to the other is at least the distance of the
-   middles less the two halves. The margin covers the rounding of the
-   item's floats, so nothing the exact measure would keep is pruned. */
-MESHFIX__PRIVATE int meshfix__surely_farther(const double middle[3], double half, const meshfix__cell_item *item,
-                                           double best)
+   with this middle, by their middles alone: each point of the item's
+   segment is within its half length of its middle, so a point's distance
+   to the segment is at least its distance to that middle less the half;
+   and the two ends of a segment are together at least twice as far from
+   any point as its middle is. So the mean distance of the three points is
+   at least the distance of the middles less the item's half. The margin
+   covers the rounding of the item's floats, so nothing the exact measure
+   would keep is pruned. */
+MESHFIX__PRIVATE int meshfix__surely_farther(const double middle[3], const meshfix__cell_item *item, double best)
 {
-    double d2 = 0, slack = half + (double)item->half + best + 1e-5 * (1.0 + best);
+    double d2 = 0, slack = (double)item->half + best + 1e-5 * (1.0 + best);
     int k;
     for (k = 0; k < 3; ++k) {
         double x = middle[k] - (double)item->middle[k];
@@ -4051,7 +4059,7 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
         meshfix__segment *s = &segments[i];
         double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = reach;
         unsigned int best_id = MESHFIX__NONE, looked = 0;
-        double middle[3], half = 0.5 * s->length;
+        double middle[3];
         int ring, axis;
         meshfix__segment_cells(grid, s, reach, lo, hi);
         meshfix__segment_cells(grid, s, 0.0, inner_lo, inner_hi);
@@ -4066,7 +4074,7 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
             double from[3], to[3];
             if (ring == 1) {
                 /* the cells of the margin that come near enough to the middle */
-                double radius = half + longest_half + best + 1e-5 * (1.0 + best);
+                double radius = longest_half + best + 1e-5 * (1.0 + best);
                 for (axis = 0; axis < 3; ++axis) {
                     from[axis] = meshfix__maxd(lo[axis], MESHFIX_FLOOR((middle[axis] - radius) / grid->cell));
                     to[axis] = meshfix__mind(hi[axis], MESHFIX_FLOOR((middle[axis] + radius) / grid->cell));
@@ -4082,7 +4090,7 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
                         int inner = x >= inner_lo[0] && x <= inner_hi[0] && y >= inner_lo[1] && y <= inner_hi[1] &&
                                     z >= inner_lo[2] && z <= inner_hi[2];
                         if (inner != (ring == 0) ||
-                            !meshfix__cell_within(grid, x, y, z, middle, half + longest_half + best))
+                            !meshfix__cell_within(grid, x, y, z, middle, longest_half + best))
                             continue;
                         bucket = meshfix__grid_bucket(grid, x, y, z);
                         for (j = bucket == 0 ? 0 : grid->start[bucket - 1];
@@ -4090,9 +4098,9 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
                             const meshfix__cell_item *item = &grid->items[j];
                             unsigned int f = item->segment;
                             double d;
-                            if (item->patch == s->patch || meshfix__surely_farther(middle, half, item, best))
+                            if (item->patch == s->patch || meshfix__surely_farther(middle, item, best))
                                 continue;
-                            d = meshfix__segment_distance(s, &segments[f]);
+                            d = meshfix__segment_distance(s, &segments[f], best);
                             if (d < best || (d == best && (best_id == MESHFIX__NONE ||
                                                            meshfix__segment_before(&segments[f], &segments[best_id])))) {
                                 best = d;
