@@ -4563,7 +4563,6 @@ MESHFIX__PRIVATE void meshfix__sum_unit_triangle(meshfix__geometry *g, unsigned 
 {
     const meshfix__mesh *m = g->m;
     double a[3], b[3], c[3], n[3], area, volume, sign = meshfix__unit_relative(g, t) ? -1.0 : 1.0;
-    float f[3];
     int k;
     if (!meshfix__has_geometry(m, t)) {
         if (m->positions == NULL) /* no positions: count triangles */
@@ -4581,10 +4580,9 @@ MESHFIX__PRIVATE void meshfix__sum_unit_triangle(meshfix__geometry *g, unsigned 
     *(sign > 0 ? &u->kept : &u->reversed) += area;
     u->normals += sign * meshfix__normal_vote(m, t, n) * area;
     u->normals_area += meshfix__normal_usable(m, t) ? area : 0.0;
-    for (k = 0; k < 3; ++k) {
-        meshfix__frame_vertex(&g->bvh, m, m->indices[3 * t + (unsigned int)k], f);
-        meshfix__grow_box(u->box, u->box + 3, f);
-    }
+    /* the box as given; into the frame once the unit is summed */
+    for (k = 0; k < 3; ++k)
+        meshfix__grow_box(u->box, u->box + 3, meshfix__position(m, m->indices[3 * t + (unsigned int)k]));
 }
 
 /* A unit is closed when no member has a boundary edge and, at every
@@ -4667,6 +4665,15 @@ MESHFIX__PRIVATE void meshfix__sum_units(meshfix__geometry *g)
                 x->has_origin = 1;
             }
             meshfix__sum_unit_triangle(g, t, x->origin, x);
+        }
+    }
+    /* the frame is monotonic: the box of the corners' images is the image
+       of their box */
+    for (u = 0; u < g->unit_count; ++u) {
+        float *box = g->units[u].box;
+        if (box[0] <= box[3]) {
+            meshfix__frame_float(&g->bvh, box, box);
+            meshfix__frame_float(&g->bvh, box + 3, box + 3);
         }
     }
 }
