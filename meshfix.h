@@ -2651,15 +2651,13 @@ MESHFIX__PRIVATE unsigned int meshfix__morton_split(const unsigned int *codes, u
     return hi - first;
 }
 
-/* The node over slots [first, first + count) (unit-relative) and the box
-   around them: the largest part is split until there are four or all are
-   leaves. Each child's codes agree in one more bit than its node's, or
-   it is half of a run of equal codes: at most 30 + 16 levels. */
-MESHFIX__PRIVATE unsigned int meshfix__morton_node(meshfix__morton *k, unsigned int first, unsigned int count,
-                                                  float box[6])
+/* A node's children: the largest part is split until there are four or
+   all are leaves. Returns how many. */
+MESHFIX__PRIVATE int meshfix__morton_parts(const unsigned int *codes, unsigned int first, unsigned int count,
+                                          unsigned int part_first[MESHFIX__WIDTH],
+                                          unsigned int part_count[MESHFIX__WIDTH])
 {
-    unsigned int index = k->next_node++, part_first[MESHFIX__WIDTH], part_count[MESHFIX__WIDTH], split, i;
-    meshfix__node *node = &k->nodes[index];
+    unsigned int split;
     int n = 1, c, best;
     part_first[0] = first;
     part_count[0] = count;
@@ -2669,12 +2667,37 @@ MESHFIX__PRIVATE unsigned int meshfix__morton_node(meshfix__morton *k, unsigned 
                 best = c;
         if (best < 0)
             break;
-        split = meshfix__morton_split(k->codes, part_first[best], part_count[best]);
+        split = meshfix__morton_split(codes, part_first[best], part_count[best]);
         part_first[n] = part_first[best] + split;
         part_count[n] = part_count[best] - split;
         part_count[best] = split;
         n++;
     }
+    return n;
+}
+
+/* How many nodes meshfix__morton_node makes over [first, first + count). */
+MESHFIX__PRIVATE unsigned int meshfix__morton_count(const unsigned int *codes, unsigned int first, unsigned int count)
+{
+    unsigned int part_first[MESHFIX__WIDTH], part_count[MESHFIX__WIDTH], nodes = 1;
+    int n = meshfix__morton_parts(codes, first, count, part_first, part_count), c;
+    for (c = 0; c < n; ++c)
+        if (part_count[c] > MESHFIX__LEAF)
+            nodes += meshfix__morton_count(codes, part_first[c], part_count[c]);
+    return nodes;
+}
+
+/* The node over slots [first, first + count) (unit-relative) and the box
+   around them: the largest part is split until there are four or all are
+   leaves (meshfix__morton_parts). Each child's codes agree in one more
+   bit than its node's, or it is half of a run of equal codes: at most
+   30 + 16 levels. */
+MESHFIX__PRIVATE unsigned int meshfix__morton_node(meshfix__morton *k, unsigned int first, unsigned int count,
+                                                  float box[6])
+{
+    unsigned int index = k->next_node++, part_first[MESHFIX__WIDTH], part_count[MESHFIX__WIDTH], i;
+    meshfix__node *node = &k->nodes[index];
+    int n = meshfix__morton_parts(k->codes, first, count, part_first, part_count), c;
     meshfix__empty_node(node);
     meshfix__empty_box(box);
     for (c = 0; c < n; ++c) {
@@ -2713,96 +2736,181 @@ MESHFIX__PRIVATE void meshfix__cut_clusters(const unsigned int *codes, unsigned 
         starts[(*clusters)++] = first;
 }
 
-/* The tree over the clusters, then each cluster's leaf replaced by its
-   triangles (a few) or the Morton tree under it. */
-MESHFIX__PRIVATE unsigned int meshfix__cluster_tree(meshfix__morton *k, unsigned int count, unsigned int *free_space)
+/* A large unit's build in phases, each a loop over equal chunks of its
+   triangles or clusters that touch only their own slots and nodes: the
+   caller's parallel_for runs them side by side when the unit is built on
+   its own (never from inside another task), and every chunk writes the
+   same bits wherever it runs. */
+#define MESHFIX__MORTON_CHUNKS 64
+#define MESHFIX__PARALLEL_UNIT 65536 /* triangles from which a unit's own build is parallel */
+#define MESHFIX__BUILD_CENTROIDS 0   /* corners into waiting, centroids, each chunk's box of them */
+#define MESHFIX__BUILD_CODES 1
+#define MESHFIX__BUILD_GATHER 2      /* corners in code order */
+#define MESHFIX__BUILD_CLUSTERS 3    /* the clusters' boxes */
+#define MESHFIX__BUILD_COUNTS 4      /* the nodes each cluster's Morton tree needs */
+#define MESHFIX__BUILD_SUBTREES 5    /* the Morton tree under each cluster */
+
+typedef struct meshfix__morton_build {
+    meshfix__bvh *b;
+    const meshfix__mesh *m;
+    unsigned int first, n;          /* the unit's slots */
+    unsigned int *order, *codes, *slot_of, *scratch;
+    float *slots, *waiting;         /* final corners; corners in triangle order (in the unit's nodes) */
+    float chunk_box[MESHFIX__MORTON_CHUNKS][6];
+    float low[3];
+    double scale[3];
+    unsigned int clusters, *starts, *ids, *bases; /* cluster c: slots from starts[c], nodes from bases[c] */
+    float *cluster_slots;
+    int phase;
+} meshfix__morton_build;
+
+MESHFIX__PRIVATE void meshfix__morton_chunk(void *context, size_t chunk)
 {
-    unsigned int clusters = 0, c, *starts = free_space, *ids, node, top_end, root;
-    float *slots;
+    meshfix__morton_build *k = (meshfix__morton_build *)context;
+    unsigned int total = k->phase >= MESHFIX__BUILD_CLUSTERS ? k->clusters : k->n, i, j;
+    unsigned int per = (total + MESHFIX__MORTON_CHUNKS - 1) / MESHFIX__MORTON_CHUNKS;
+    unsigned int from = (unsigned int)chunk * per, to = from + per < total ? from + per : total;
+    int c;
+    for (i = from; i < to; ++i) {
+        if (k->phase == MESHFIX__BUILD_CENTROIDS) {
+            float *corners = k->waiting + 9 * (size_t)i, *centroid = k->slots + 3 * (size_t)i;
+            meshfix__load_corners(k->b, k->m, k->order[i], corners);
+            for (c = 0; c < 3; ++c)
+                centroid[c] = meshfix__centroid(corners, c);
+            meshfix__grow_box(k->chunk_box[chunk], k->chunk_box[chunk] + 3, centroid);
+        } else if (k->phase == MESHFIX__BUILD_CODES) {
+            const float *centroid = k->slots + 3 * (size_t)i;
+            unsigned int code = 0;
+            for (c = 0; c < 3; ++c)
+                code |= meshfix__spread_bits((unsigned int)(((double)centroid[c] - (double)k->low[c]) * k->scale[c]))
+                        << (2 - c);
+            k->codes[i] = code;
+            k->slot_of[i] = i;
+        } else if (k->phase == MESHFIX__BUILD_GATHER) {
+            k->order[i] = k->scratch[k->slot_of[i]];
+            MESHFIX_MEMCPY(k->slots + 9 * (size_t)i, k->waiting + 9 * (size_t)k->slot_of[i], 9 * sizeof(float));
+        } else if (k->phase == MESHFIX__BUILD_CLUSTERS) {
+            float *slot = k->cluster_slots + 9 * (size_t)i;
+            meshfix__empty_box(slot);
+            for (j = 3 * k->starts[i]; j < 3 * k->starts[i + 1]; ++j)
+                meshfix__grow_box(slot, slot + 3, k->slots + 3 * (size_t)j);
+            for (c = 0; c < 3; ++c)
+                slot[MESHFIX__SLOT_CENTROID + c] = 0.5f * (slot[c] + slot[3 + c]);
+            k->ids[i] = i;
+        } else if (k->phase == MESHFIX__BUILD_COUNTS) {
+            unsigned int size = k->starts[i + 1] - k->starts[i];
+            k->bases[i] = size > MESHFIX__LEAF ? meshfix__morton_count(k->codes, k->starts[i], size) : 0u;
+        } else if (k->starts[i + 1] - k->starts[i] > MESHFIX__LEAF) {
+            meshfix__morton sub;
+            float box[6];
+            sub.corners = k->slots;
+            sub.codes = k->codes;
+            sub.first_slot = k->first;
+            sub.nodes = k->b->nodes;
+            sub.next_node = k->bases[i];
+            meshfix__morton_node(&sub, k->starts[i], k->starts[i + 1] - k->starts[i], box);
+        }
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__morton_phase(meshfix__morton_build *k, int phase, const meshfix_options *parallel)
+{
+    size_t chunk;
+    k->phase = phase;
+    if (parallel != NULL && parallel->parallel_for != NULL)
+        parallel->parallel_for(meshfix__morton_chunk, k, MESHFIX__MORTON_CHUNKS, parallel->parallel_user);
+    else
+        for (chunk = 0; chunk < MESHFIX__MORTON_CHUNKS; ++chunk)
+            meshfix__morton_chunk(k, chunk);
+}
+
+/* The tree over the clusters (binned SAH, a cluster a leaf), whose leaves
+   then point at the clusters' triangles (a few) or the Morton trees under
+   them, each in the nodes counted for it, one after the other (a cluster
+   of s triangles needs at most s - 1). Returns the root. */
+MESHFIX__PRIVATE unsigned int meshfix__cluster_tree(meshfix__morton_build *k, const meshfix_options *parallel)
+{
+    unsigned int c, node, top_end, root, next;
     meshfix__builder top;
     int i;
-    meshfix__cut_clusters(k->codes, 0, count, starts, &clusters);
-    starts[clusters] = count;
-    slots = (float *)(void *)(starts + clusters + 1);
-    ids = (unsigned int *)(void *)(slots + 9 * (size_t)clusters);
-    for (c = 0; c < clusters; ++c) {
-        float *slot = slots + 9 * (size_t)c;
-        unsigned int j;
-        meshfix__empty_box(slot);
-        for (j = 3 * starts[c]; j < 3 * starts[c + 1]; ++j)
-            meshfix__grow_box(slot, slot + 3, k->corners + 3 * (size_t)j);
-        for (i = 0; i < 3; ++i)
-            slot[MESHFIX__SLOT_CENTROID + i] = 0.5f * (slot[i] + slot[3 + i]);
-        ids[c] = c;
-    }
-    top.slots = slots;
-    top.ids = ids;
-    top.nodes = k->nodes;
-    top.next_node = k->next_node;
+    k->clusters = 0;
+    k->starts = k->slot_of; /* free since the gather */
+    meshfix__cut_clusters(k->codes, 0, k->n, k->starts, &k->clusters);
+    k->starts[k->clusters] = k->n;
+    k->cluster_slots = (float *)(void *)(k->starts + k->clusters + 1);
+    k->ids = (unsigned int *)(void *)(k->cluster_slots + 9 * (size_t)k->clusters);
+    meshfix__morton_phase(k, MESHFIX__BUILD_CLUSTERS, parallel);
+    top.slots = k->cluster_slots;
+    top.ids = k->ids;
+    top.nodes = k->b->nodes;
+    top.next_node = k->first; /* at most n nodes in all: the unit's own range */
     top.leaf = 1;
-    root = meshfix__build_tree(&top, 0, clusters);
-    top_end = k->next_node = top.next_node;
+    root = meshfix__build_tree(&top, 0, k->clusters);
+    top_end = top.next_node;
+    /* the clusters' slots are read: their first floats hold each one's
+       node count, then where its nodes start, one after the other */
+    k->bases = (unsigned int *)(void *)k->cluster_slots;
+    meshfix__morton_phase(k, MESHFIX__BUILD_COUNTS, parallel);
+    for (c = 0, next = top_end; c < k->clusters; ++c) {
+        unsigned int nodes = k->bases[c];
+        k->bases[c] = next;
+        next += nodes;
+    }
     for (node = root; node < top_end; ++node)
         for (i = 0; i < MESHFIX__WIDTH; ++i) {
-            meshfix__node *x = &k->nodes[node];
-            unsigned int first, size;
-            float box[6];
+            meshfix__node *x = &k->b->nodes[node];
+            unsigned int size;
             if (x->count[i] == 0 || x->count[i] == MESHFIX__EMPTY)
                 continue;
-            c = ids[x->child[i]];
-            first = starts[c];
-            size = starts[c + 1] - first;
+            c = k->ids[x->child[i]];
+            size = k->starts[c + 1] - k->starts[c];
             x->count[i] = (unsigned char)(size <= MESHFIX__LEAF ? size : 0u);
-            x->child[i] = size <= MESHFIX__LEAF ? k->first_slot + first : meshfix__morton_node(k, first, size, box);
+            x->child[i] = size <= MESHFIX__LEAF ? k->first + k->starts[c] : k->bases[c];
         }
+    meshfix__morton_phase(k, MESHFIX__BUILD_SUBTREES, parallel);
     return root;
 }
 
 /* The tree of slots [first, end): Morton codes of their centroids in the
-   box of the centroids, sorted with the slots' triangles, corners loaded
-   in that order, then the nodes. Returns its root. */
+   box of the centroids, sorted with the slots' triangles, corners moved
+   into that order, then the nodes. `parallel`: the options whose
+   parallel_for may run the phases (NULL: here). Returns its root. */
 MESHFIX__PRIVATE unsigned int meshfix__morton_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
-                                                  unsigned int end)
+                                                  unsigned int end, const meshfix_options *parallel)
 {
-    unsigned int n = end - first, i, *order = b->order + first;
-    unsigned int *codes = b->sort + 4 * (size_t)first, *slot_of = codes + n, *scratch = codes + 2 * (size_t)n;
-    float *slots = b->corners + 9 * (size_t)first, low[3] = {1e30f, 1e30f, 1e30f}, high[3] = {-1e30f, -1e30f, -1e30f};
-    double scale[3];
-    meshfix__morton k;
+    meshfix__morton_build k;
+    float high[3];
+    unsigned int chunk;
     int c;
+    k.b = b;
+    k.m = m;
+    k.first = first;
+    k.n = end - first;
+    k.order = b->order + first;
+    k.codes = b->sort + 4 * (size_t)first;
+    k.slot_of = k.codes + k.n;
+    k.scratch = k.codes + 2 * (size_t)k.n;
+    k.slots = b->corners + 9 * (size_t)first;
     /* the corners wait where the unit's nodes will be, until they are
        moved into code order */
-    float *waiting = (float *)(void *)(b->nodes + first);
-    for (i = 0; i < n; ++i) {
-        float *corners = waiting + 9 * (size_t)i, *centroid = slots + 3 * (size_t)i;
-        meshfix__load_corners(b, m, order[i], corners);
-        for (c = 0; c < 3; ++c)
-            centroid[c] = meshfix__centroid(corners, c);
-        meshfix__grow_box(low, high, centroid);
+    k.waiting = (float *)(void *)(b->nodes + first);
+    for (chunk = 0; chunk < MESHFIX__MORTON_CHUNKS; ++chunk)
+        meshfix__empty_box(k.chunk_box[chunk]);
+    meshfix__morton_phase(&k, MESHFIX__BUILD_CENTROIDS, parallel);
+    for (c = 0; c < 3; ++c) {
+        k.low[c] = 1e30f, high[c] = -1e30f;
+        for (chunk = 0; chunk < MESHFIX__MORTON_CHUNKS; ++chunk) {
+            k.low[c] = k.chunk_box[chunk][c] < k.low[c] ? k.chunk_box[chunk][c] : k.low[c];
+            high[c] = k.chunk_box[chunk][3 + c] > high[c] ? k.chunk_box[chunk][3 + c] : high[c];
+        }
+        k.scale[c] = high[c] > k.low[c] ? 1023.0 / ((double)high[c] - (double)k.low[c]) : 0.0;
     }
-    for (c = 0; c < 3; ++c)
-        scale[c] = high[c] > low[c] ? 1023.0 / ((double)high[c] - (double)low[c]) : 0.0;
-    for (i = 0; i < n; ++i) {
-        const float *centroid = slots + 3 * (size_t)i;
-        unsigned int code = 0;
-        for (c = 0; c < 3; ++c)
-            code |= meshfix__spread_bits((unsigned int)(((double)centroid[c] - (double)low[c]) * scale[c])) << (2 - c);
-        codes[i] = code;
-        slot_of[i] = i;
-    }
-    meshfix__radix_sort(codes, slot_of, scratch, scratch + n, n);
+    meshfix__morton_phase(&k, MESHFIX__BUILD_CODES, parallel);
+    meshfix__radix_sort(k.codes, k.slot_of, k.scratch, k.scratch + k.n, k.n);
     /* the triangles in code order: the old order waits in the scratch */
-    MESHFIX_MEMCPY(scratch, order, n * sizeof(unsigned int));
-    for (i = 0; i < n; ++i) {
-        order[i] = scratch[slot_of[i]];
-        MESHFIX_MEMCPY(slots + 9 * (size_t)i, waiting + 9 * (size_t)slot_of[i], 9 * sizeof(float));
-    }
-    k.corners = slots;
-    k.codes = codes;
-    k.first_slot = first;
-    k.nodes = b->nodes;
-    k.next_node = first; /* at most n nodes: its own range (a node has two children or more) */
-    return meshfix__cluster_tree(&k, n, slot_of);
+    MESHFIX_MEMCPY(k.scratch, k.order, k.n * sizeof(unsigned int));
+    meshfix__morton_phase(&k, MESHFIX__BUILD_GATHER, parallel);
+    return meshfix__cluster_tree(&k, parallel);
 }
 
 /* Sets up the slots of the triangles with an area, unit by unit (a
@@ -2858,15 +2966,17 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
 
 /* The tree of unit u, built the first time it is asked for; NONE when the
    unit has no triangle with an area. Its slots hold each triangle's box
-   and centroid while it is built, its corners afterwards. */
-MESHFIX__PRIVATE unsigned int meshfix__unit_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int u)
+   and centroid while it is built, its corners afterwards. `parallel`:
+   options whose parallel_for may run a large unit's build (NULL: here). */
+MESHFIX__PRIVATE unsigned int meshfix__build_unit(meshfix__bvh *b, const meshfix__mesh *m, unsigned int u,
+                                                 const meshfix_options *parallel)
 {
     unsigned int first = b->unit_first[u], end = b->unit_first[u + 1], i;
     meshfix__builder k;
     if (b->unit_root[u] != MESHFIX__NONE || first == end)
         return b->unit_root[u];
     if (end - first >= MESHFIX__MORTON_MIN)
-        return b->unit_root[u] = meshfix__morton_tree(b, m, first, end);
+        return b->unit_root[u] = meshfix__morton_tree(b, m, first, end, parallel);
     meshfix__builder_slots(b, m, first, end);
     k.slots = b->corners;
     k.ids = b->order;
@@ -2877,6 +2987,11 @@ MESHFIX__PRIVATE unsigned int meshfix__unit_tree(meshfix__bvh *b, const meshfix_
     for (i = first; i < end; ++i)
         meshfix__load_corners(b, m, b->order[i], b->corners + 9 * (size_t)i);
     return b->unit_root[u];
+}
+
+MESHFIX__PRIVATE unsigned int meshfix__unit_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int u)
+{
+    return meshfix__build_unit(b, m, u, NULL);
 }
 
 /* The tree over all units' trees (each unit's tree built first); its
@@ -4048,14 +4163,22 @@ MESHFIX__PRIVATE int meshfix__cell_within(const meshfix__grid *grid, double x, d
    the search stays linear; what it drops is far. A cell whose items'
    middles are all too far to beat the best so far (meshfix__surely_farther
    with the longest segment) is not read. */
-MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigned int n, const meshfix__grid *grid,
-                                            double reach)
+typedef struct meshfix__partner_task {
+    meshfix__segment *segments;
+    unsigned int count;
+    const meshfix__grid *grid;
+    double reach, longest_half;
+} meshfix__partner_task;
+
+/* Segments [first, end): each reads the others' geometry and writes only
+   its own partner and distance, so chunks can run side by side. */
+MESHFIX__PRIVATE void meshfix__find_partners(const meshfix__partner_task *task, unsigned int first, unsigned int end)
 {
+    meshfix__segment *segments = task->segments;
+    const meshfix__grid *grid = task->grid;
+    double reach = task->reach, longest_half = task->longest_half;
     unsigned int i;
-    double longest_half = 0;
-    for (i = 0; i < n; ++i)
-        longest_half = meshfix__maxd(longest_half, 0.5 * segments[i].length);
-    for (i = 0; i < n; ++i) {
+    for (i = first; i < end; ++i) {
         meshfix__segment *s = &segments[i];
         double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = reach;
         unsigned int best_id = MESHFIX__NONE, looked = 0;
@@ -4112,6 +4235,36 @@ MESHFIX__PRIVATE void meshfix__find_partners(meshfix__segment *segments, unsigne
         s->partner = best_id;
         s->distance = best;
     }
+}
+
+#define MESHFIX__SEGMENTS_PER_TASK 4096
+MESHFIX__PRIVATE void meshfix__partner_chunk(void *context, size_t chunk)
+{
+    const meshfix__partner_task *task = (const meshfix__partner_task *)context;
+    size_t first = chunk * MESHFIX__SEGMENTS_PER_TASK, end = first + MESHFIX__SEGMENTS_PER_TASK;
+    meshfix__find_partners(task, (unsigned int)first, (unsigned int)(end < task->count ? end : task->count));
+}
+
+/* Every segment's partner, on the caller's threads if it gave a
+   parallel_for (the same partners however the chunks run). */
+MESHFIX__PRIVATE void meshfix__find_all_partners(const meshfix__geometry *g, meshfix__segment *segments,
+                                                unsigned int n, const meshfix__grid *grid, double reach)
+{
+    meshfix__partner_task task;
+    size_t chunks = ((size_t)n + MESHFIX__SEGMENTS_PER_TASK - 1) / MESHFIX__SEGMENTS_PER_TASK, c;
+    unsigned int i;
+    task.segments = segments;
+    task.count = n;
+    task.grid = grid;
+    task.reach = reach;
+    task.longest_half = 0;
+    for (i = 0; i < n; ++i)
+        task.longest_half = meshfix__maxd(task.longest_half, 0.5 * segments[i].length);
+    if (g->o->parallel_for != NULL && chunks > 1)
+        g->o->parallel_for(meshfix__partner_chunk, &task, chunks, g->o->parallel_user);
+    else
+        for (c = 0; c < chunks; ++c)
+            meshfix__partner_chunk(&task, c);
 }
 
 /* Stage 4: the pairs the partners give. A boundary edge with no real
@@ -4348,7 +4501,7 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
     if (out->segment_count != 0) {
         if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, &grid))
             goto done;
-        meshfix__find_partners(out->segments, out->segment_count, &grid, reach);
+        meshfix__find_all_partners(g, out->segments, out->segment_count, &grid, reach);
         meshfix__pair_partners(out->segments, out->segment_count, out->pairs, &out->pair_count);
     }
     meshfix__ring_pairs(g, scale, work, angle, members, out->pairs, &out->pair_count);
@@ -5006,6 +5159,12 @@ MESHFIX__PRIVATE void meshfix__build_unit_trees(meshfix__geometry *g)
 {
     meshfix__tree_task task;
     size_t chunks = g->unit_count < MESHFIX__TREE_TASKS ? g->unit_count : MESHFIX__TREE_TASKS, c;
+    unsigned int u;
+    /* the large units first, one at a time, each build on every thread */
+    if (g->o->parallel_for != NULL)
+        for (u = 0; u < g->unit_count; ++u)
+            if (g->bvh.unit_first[u + 1] - g->bvh.unit_first[u] >= MESHFIX__PARALLEL_UNIT)
+                meshfix__build_unit(&g->bvh, g->m, u, g->o);
     task.bvh = &g->bvh;
     task.m = g->m;
     task.unit_count = g->unit_count;

@@ -628,6 +628,48 @@ static void threaded_parallel_for(void (*task)(void *, size_t), void *context, s
 /* AUTO on scenes of many units (trees built and evidence gathered as
    tasks) with 2 and 4 real threads: the result of the single-threaded
    run, bit for bit. */
+/* A unit large enough that its own tree is built on every thread
+   (MESHFIX__PARALLEL_UNIT triangles and more) and boundary segments for
+   many partner-search chunks: a 152k-triangle sphere cut into 32 patches
+   with gaps, half of them reversed. */
+static void test_threads_large_unit(void)
+{
+    mio_mesh whole, pieces;
+    unsigned int *patch_of, *single, *multi;
+    unsigned char *truth;
+    meshfix_report r1, r2;
+    size_t threads, t;
+    memset(&whole, 0, sizeof(whole));
+    memset(&pieces, 0, sizeof(pieces));
+    CHECK(gen_sphere(&whole, 200, 380, 0, 0, 0, 1));
+    patch_of = (unsigned int *)malloc(whole.index_count / 3 * sizeof(unsigned int));
+    truth = (unsigned char *)malloc(whole.index_count / 3);
+    CHECK(gen_cut(&pieces, patch_of, &whole, 32, 0.01f, 3) == 32);
+    CHECK(pieces.index_count / 3 >= 2 * MESHFIX__PARALLEL_UNIT);
+    for (t = 0; t < pieces.index_count / 3; ++t)
+        truth[t] = 1;
+    gen_reverse_patches(&pieces, truth, patch_of, 0.5, 11);
+    single = (unsigned int *)malloc(pieces.index_count * sizeof(unsigned int));
+    multi = (unsigned int *)malloc(pieces.index_count * sizeof(unsigned int));
+    CHECK_EQ(meshfix_orient(single, pieces.indices, pieces.index_count, pieces.positions, pieces.vertex_count, 0, NULL, &r1, NULL),
+             MESHFIX_OK);
+    for (threads = 2; threads <= 4; threads += 2) {
+        meshfix_options o = {0};
+        o.parallel_for = threaded_parallel_for;
+        o.parallel_user = &threads;
+        CHECK_EQ(meshfix_orient(multi, pieces.indices, pieces.index_count, pieces.positions, pieces.vertex_count, 0, &o, &r2, NULL),
+                 MESHFIX_OK);
+        CHECK(memcmp(single, multi, pieces.index_count * sizeof(unsigned int)) == 0);
+        CHECK(memcmp(&r1, &r2, sizeof(r1)) == 0);
+    }
+    printf("    %lu-triangle cut sphere: %lu flipped, the same on 1, 2 and 4 threads\n",
+           (unsigned long)(pieces.index_count / 3), (unsigned long)r1.triangles_flipped);
+    CHECK(r1.triangles_flipped > 0);
+    free(single), free(multi), free(patch_of), free(truth);
+    mio_free(&whole);
+    mio_free(&pieces);
+}
+
 static void test_threads_identical(void)
 {
     static const char *const names[] = {"assembly", "parts", "glass", "cavity_cut"};
@@ -659,6 +701,7 @@ static void test_threads_identical(void)
         scene_trial_free(&t);
         scene_free(&sc);
     }
+    test_threads_large_unit();
 }
 
 static void test_parallel_for_identical(void)
