@@ -2964,6 +2964,24 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
     return 1;
 }
 
+/* The tree of slots [first, end) by binned SAH alone; returns its root. */
+MESHFIX__PRIVATE unsigned int meshfix__sah_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
+                                               unsigned int end)
+{
+    meshfix__builder k;
+    unsigned int i, root;
+    meshfix__builder_slots(b, m, first, end);
+    k.slots = b->corners;
+    k.ids = b->order;
+    k.nodes = b->nodes;
+    k.next_node = first; /* at most end - first nodes: its own range */
+    k.leaf = MESHFIX__LEAF;
+    root = meshfix__build_tree(&k, first, end - first);
+    for (i = first; i < end; ++i)
+        meshfix__load_corners(b, m, b->order[i], b->corners + 9 * (size_t)i);
+    return root;
+}
+
 /* The tree of unit u, built the first time it is asked for; NONE when the
    unit has no triangle with an area. Its slots hold each triangle's box
    and centroid while it is built, its corners afterwards. `parallel`:
@@ -2971,21 +2989,11 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
 MESHFIX__PRIVATE unsigned int meshfix__build_unit(meshfix__bvh *b, const meshfix__mesh *m, unsigned int u,
                                                  const meshfix_options *parallel)
 {
-    unsigned int first = b->unit_first[u], end = b->unit_first[u + 1], i;
-    meshfix__builder k;
+    unsigned int first = b->unit_first[u], end = b->unit_first[u + 1];
     if (b->unit_root[u] != MESHFIX__NONE || first == end)
         return b->unit_root[u];
-    if (end - first >= MESHFIX__MORTON_MIN)
-        return b->unit_root[u] = meshfix__morton_tree(b, m, first, end, parallel);
-    meshfix__builder_slots(b, m, first, end);
-    k.slots = b->corners;
-    k.ids = b->order;
-    k.nodes = b->nodes;
-    k.next_node = first; /* at most end - first nodes: its own range */
-    k.leaf = MESHFIX__LEAF;
-    b->unit_root[u] = meshfix__build_tree(&k, first, end - first);
-    for (i = first; i < end; ++i)
-        meshfix__load_corners(b, m, b->order[i], b->corners + 9 * (size_t)i);
+    b->unit_root[u] = end - first >= MESHFIX__MORTON_MIN ? meshfix__morton_tree(b, m, first, end, parallel)
+                                                         : meshfix__sah_tree(b, m, first, end);
     return b->unit_root[u];
 }
 

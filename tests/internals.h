@@ -36,11 +36,10 @@ static void make_arena(meshfix__arena *arena, size_t bytes)
     arena->size = bytes;
 }
 
-/* The ray tree over every triangle with an area, as one unit, in an
-   arena of its own (free bvh_arena->base after); returns its root.
-   `units` holds a word per triangle. */
-static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena,
-                               unsigned int *units)
+/* The slots of every triangle with an area, as one unit, in an arena of
+   its own (free bvh_arena->base after); `units` holds a word per
+   triangle. Returns 0 when out of memory. */
+static int whole_unit(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena, unsigned int *units)
 {
     unsigned int t;
     for (t = 0; t < m->triangle_count; ++t)
@@ -48,8 +47,25 @@ static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, meshfi
     memset(bvh, 0, sizeof(*bvh));
     make_arena(bvh_arena, (sizeof(meshfix__node) + 9 * sizeof(float) + 48) * (m->triangle_count + 2) + 4096);
     meshfix__fit_frame(bvh, m);
-    if (!meshfix__prepare_bvh(bvh, m, bvh_arena, units, 1))
+    return meshfix__prepare_bvh(bvh, m, bvh_arena, units, 1);
+}
+
+/* The ray tree over that unit, as the library builds it or (sah_only)
+   by binned SAH whatever its size (the builder the library keeps for
+   units below MESHFIX__MORTON_MIN triangles); returns its root. */
+static unsigned int whole_tree_built(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena,
+                                     unsigned int *units, int sah_only)
+{
+    if (!whole_unit(bvh, m, bvh_arena, units) || bvh->count == 0)
         return MESHFIX__NONE;
-    return meshfix__unit_tree(bvh, m, 0);
+    if (!sah_only)
+        return meshfix__unit_tree(bvh, m, 0);
+    return bvh->unit_root[0] = meshfix__sah_tree(bvh, m, bvh->unit_first[0], bvh->unit_first[1]);
+}
+
+static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena,
+                               unsigned int *units)
+{
+    return whole_tree_built(bvh, m, bvh_arena, units, 0);
 }
 #endif

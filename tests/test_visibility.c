@@ -897,12 +897,76 @@ static void walk_tree(const meshfix__bvh *b, unsigned int node, size_t depth, tr
     }
 }
 
-/* Both builders (binned SAH below MESHFIX__MORTON_MIN triangles, Morton
-   clusters above) against brute force: random rays from inside the box,
-   each answered by the tree and by every triangle in turn, for the
-   closest hit and the number of crossings; and the tree's structure. The
-   large models: a sphere alone, and with two stacks of triangles about
-   one point each (one Morton code a stack: split by halving). */
+/* A tree against brute force: random rays from inside the box (every
+   other one aimed at a triangle's middle), each answered by the tree and
+   by every triangle in turn, for the closest hit and the number of
+   crossings; and the tree's structure. */
+static void check_tree(const char *builder, const meshfix__bvh *bvh, unsigned int root, unsigned long long seed)
+{
+    size_t wrong = 0, slot, misplaced = 0, crossed = 0;
+    unsigned int i;
+    tree_facts facts;
+    CHECK(root != MESHFIX__NONE);
+    if (root == MESHFIX__NONE)
+        return;
+    facts.seen = (unsigned char *)calloc(bvh->count, 1);
+    facts.nodes = facts.deepest = facts.outside = 0;
+    walk_tree(bvh, root, 1, &facts);
+    for (slot = 0; slot < bvh->count; ++slot)
+        misplaced += facts.seen[slot] != 1;
+    for (i = 0; i < 3000; ++i) {
+        float from[3], d[3], t_brute = 1e30f;
+        unsigned int hits_brute;
+        meshfix__ray ray;
+        meshfix__query q;
+        meshfix__crossings crossings;
+        const float *aim;
+        int k;
+        slot = (size_t)(gen_uniform(&seed) * bvh->count);
+        aim = bvh->corners + 9 * slot;
+        for (k = 0; k < 3; ++k) {
+            from[k] = bvh->low[k] + (float)gen_uniform(&seed) * (bvh->high[k] - bvh->low[k]);
+            d[k] = i % 2 ? (aim[k] + aim[3 + k] + aim[6 + k]) / 3.0f - from[k] : (float)gen_uniform(&seed) - 0.5f;
+        }
+        meshfix__setup_ray(&ray, from, d, 0.0f, 1e30f);
+        crossings.halves = crossings.vertex_count = 0;
+        for (slot = 0; slot < bvh->count; ++slot) {
+            /* the leaves' own test, one slot at a time: the same float
+               operations even where -ffast-math reorders the scalar test */
+            float hit_t[4];
+            int zeros[4];
+            if (meshfix__hit_slots(&ray, bvh->corners + 9 * slot, 1, hit_t, zeros)) {
+                t_brute = hit_t[0] < t_brute ? hit_t[0] : t_brute;
+                meshfix__count_crossing(&crossings, hit_t[0], zeros[0]);
+            }
+        }
+        hits_brute = (crossings.halves + 1) / 2;
+        crossed += hits_brute;
+        q.skip = MESHFIX__NONE;
+        q.mode = MESHFIX__CLOSEST_HIT;
+        if (meshfix__trace(bvh, root, &ray, &q) != (t_brute < 1e30f) || (t_brute < 1e30f && q.t != t_brute))
+            wrong++;
+        q.mode = MESHFIX__COUNT_HITS;
+        meshfix__trace(bvh, root, &ray, &q);
+        wrong += q.hits != hits_brute;
+    }
+    printf("    %u triangles, %s: %lu nodes, depth %lu; 3000 rays, %lu crossings, %lu answers unlike brute force\n",
+           bvh->count, builder, (unsigned long)facts.nodes, (unsigned long)facts.deepest, (unsigned long)crossed,
+           (unsigned long)wrong);
+    CHECK(crossed > 1500);
+    CHECK_EQ(misplaced, 0);
+    CHECK_EQ(facts.outside, 0);
+    CHECK(facts.nodes <= bvh->count);
+    CHECK(facts.deepest <= MESHFIX__BVH_LEVELS);
+    CHECK_EQ(wrong, 0);
+    free(facts.seen);
+}
+
+/* Both builders against brute force: the library's choice (binned SAH
+   below MESHFIX__MORTON_MIN triangles, Morton clusters above) and binned
+   SAH on every model. The large models: a sphere alone, and with two
+   stacks of triangles about one point each (one Morton code a stack:
+   split by halving). */
 static void test_trees_against_brute_force(void)
 {
     int model;
@@ -913,10 +977,8 @@ static void test_trees_against_brute_force(void)
         meshfix__arena arena;
         meshfix_options o;
         unsigned char *block;
-        unsigned int *units, root, i;
-        unsigned long long seed = 7 + (unsigned long long)model;
-        size_t wrong = 0, slot, misplaced = 0, t, crossed = 0;
-        tree_facts facts;
+        unsigned int *units;
+        size_t t;
         memset(&g, 0, sizeof(g));
         if (model == 0)
             CHECK(gen_sphere(&g, 20, 30, 0, 0, 0, 1)); /* SAH */
@@ -952,62 +1014,11 @@ static void test_trees_against_brute_force(void)
         memset(&o, 0, sizeof(o));
         block = bind_mesh(&m, &o, g.indices, g.index_count, g.positions, g.vertex_count);
         units = (unsigned int *)calloc(g.index_count / 3, sizeof(unsigned int));
-        root = whole_tree(&bvh, &m, &arena, units);
-        CHECK(root != MESHFIX__NONE);
-        facts.seen = (unsigned char *)calloc(bvh.count, 1);
-        facts.nodes = facts.deepest = facts.outside = 0;
-        walk_tree(&bvh, root, 1, &facts);
-        for (slot = 0; slot < bvh.count; ++slot)
-            misplaced += facts.seen[slot] != 1;
-        for (i = 0; i < 3000; ++i) {
-            float from[3], d[3], t_brute = 1e30f;
-            unsigned int hits_brute = 0;
-            meshfix__ray ray;
-            meshfix__query q;
-            meshfix__crossings crossings;
-            int k;
-            /* every other ray aimed at a triangle's middle */
-            slot = (size_t)(gen_uniform(&seed) * bvh.count);
-            for (k = 0; k < 3; ++k) {
-                from[k] = bvh.low[k] + (float)gen_uniform(&seed) * (bvh.high[k] - bvh.low[k]);
-                d[k] = i % 2 ? (bvh.corners[9 * slot + k] + bvh.corners[9 * slot + 3 + k] + bvh.corners[9 * slot + 6 + k]) /
-                                       3.0f - from[k]
-                             : (float)gen_uniform(&seed) - 0.5f;
-            }
-            meshfix__setup_ray(&ray, from, d, 0.0f, 1e30f);
-            crossings.halves = crossings.vertex_count = 0;
-            for (slot = 0; slot < bvh.count; ++slot) {
-                /* the leaves' own test, one slot at a time: the same float
-                   operations even where -ffast-math reorders the scalar test */
-                float hit_t[4];
-                int zeros[4];
-                if (meshfix__hit_slots(&ray, bvh.corners + 9 * slot, 1, hit_t, zeros)) {
-                    t_brute = hit_t[0] < t_brute ? hit_t[0] : t_brute;
-                    meshfix__count_crossing(&crossings, hit_t[0], zeros[0]);
-                }
-            }
-            hits_brute = (crossings.halves + 1) / 2;
-            crossed += hits_brute;
-            q.skip = MESHFIX__NONE;
-            q.mode = MESHFIX__CLOSEST_HIT;
-            if (meshfix__trace(&bvh, root, &ray, &q) != (t_brute < 1e30f) || (t_brute < 1e30f && q.t != t_brute))
-                wrong++;
-            q.mode = MESHFIX__COUNT_HITS;
-            meshfix__trace(&bvh, root, &ray, &q);
-            wrong += q.hits != hits_brute;
-        }
-        printf("    %u triangles (%s): %lu nodes, depth %lu; 3000 rays, %lu crossings, %lu answers unlike brute "
-               "force\n",
-               bvh.count, bvh.count >= MESHFIX__MORTON_MIN ? "Morton clusters" : "binned SAH", (unsigned long)facts.nodes,
-               (unsigned long)facts.deepest, (unsigned long)crossed, (unsigned long)wrong);
-        CHECK(crossed > 1500);
-        CHECK_EQ(misplaced, 0);
-        CHECK_EQ(facts.outside, 0);
-        CHECK(facts.nodes <= bvh.count);
-        CHECK(facts.deepest <= MESHFIX__BVH_LEVELS);
-        CHECK_EQ(wrong, 0);
+        check_tree(model == 0 ? "the library's (binned SAH)" : "the library's (Morton clusters)", &bvh,
+                   whole_tree(&bvh, &m, &arena, units), 7 + (unsigned long long)model);
         CHECK((model == 0) == (bvh.count < MESHFIX__MORTON_MIN));
-        free(facts.seen);
+        free(arena.base);
+        check_tree("binned SAH", &bvh, whole_tree_built(&bvh, &m, &arena, units, 1), 7 + (unsigned long long)model);
         free(arena.base);
         free(units);
         free(block);
