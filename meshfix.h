@@ -2103,11 +2103,11 @@ MESHFIX__PRIVATE int meshfix__is_closed_orientable(const meshfix__mesh *m, unsig
    needs it, and a tree over the units' trees for rays through the whole
    model. A ray that asks about one unit (its own surface, or a shell that
    may enclose another) walks that unit's tree alone, so its cost does not
-   grow with the rest of the scene. Trees are built by binned SAH; the ray
-   test is watertight (Woop, Benthin, Wald, "Watertight Ray/Triangle
-   Intersection", JCGT 2013): rays neither leak through nor hit twice at
-   shared edges and vertices, so crossing counts of closed surfaces are
-   exact parities. */
+   grow with the rest of the scene. Trees are built by binned SAH, large
+   ones from Morton-ordered clusters (below); the ray test is watertight
+   (Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection", JCGT
+   2013): rays neither leak through nor hit twice at shared edges and
+   vertices, so crossing counts of closed surfaces are exact parities. */
 
 /* A node has up to four children, their boxes side by side, so that one
    ray tests all four in a few SIMD instructions. A child is a node (in
