@@ -285,7 +285,8 @@ typedef struct meshfix_evidence_options {
 
 typedef struct meshfix_visibility_options {
     /* Rays per patch proportional to area, at least min_samples (default
-       16), `rays` in all (default 128 per patch, within 65536 .. 1048576);
+       16), `rays` in all (default 128 per patch, at least 65536, or 64
+       per triangle under 1024 triangles, and at most 1048576);
        AUTO stops a patch's rays once its verdict is settled. Coherence:
        boundary edges of other patches closer than coherence_distance (of
        the longest box side, default 0.02). The paper's merge thresholds:
@@ -5461,8 +5462,12 @@ MESHFIX__PRIVATE unsigned int meshfix__visibility_samples(const meshfix__geometr
     size_t patches = g->m->patch_count, budget, floor_count;
     double area = g->units[p].area;
     budget = o->visibility.rays != 0 ? o->visibility.rays : patches * 128;
-    if (o->visibility.rays == 0)
-        budget = budget < 65536 ? 65536 : budget > 1048576 ? 1048576 : budget;
+    if (o->visibility.rays == 0) {
+        /* 64 a triangle is plenty for a mesh of a few: a quad casts 256
+           rays, not the 65536 of a larger mesh's floor */
+        size_t least = g->m->triangle_count < 1024 ? 64 * g->m->triangle_count : 65536;
+        budget = budget < least ? least : budget > 1048576 ? 1048576 : budget;
+    }
     budget /= 2; /* a sample is a pair of rays */
     floor_count = o->visibility.min_samples != 0 ? o->visibility.min_samples : 16;
     if (floor_count > budget / patches)

@@ -385,6 +385,32 @@ static void test_weld_topology(void)
     mio_free(&soup);
 }
 
+/* A small mesh costs little under every policy: no floor of rays sized
+   for large meshes (VISIBILITY's 65536 once cast 32768 pairs at a quad).
+   Counted in rays, not time: what a policy casts on a flat quad, facing
+   up, which no policy may turn over. */
+static void test_small_mesh_few_rays(void)
+{
+    static const float quad[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    static const unsigned int indices[6] = {0, 1, 2, 0, 2, 3};
+    int policy;
+    for (policy = 0; policy < MESHFIX_POLICY_COUNT; ++policy) {
+        meshfix_options o = {0};
+        meshfix_report r;
+        unsigned int out[6];
+        static const float up[3] = {0, 0, 1};
+        if (policy == MESHFIX_POLICY_SDF || policy == MESHFIX_POLICY_NORMALS)
+            continue; /* they need a function or normals */
+        o.policy = (meshfix_policy)policy;
+        memcpy(o.up, up, sizeof(up));
+        CHECK_EQ(meshfix_orient(out, indices, 6, quad, 4, 12, &o, &r, NULL), MESHFIX_OK);
+        printf("    policy %d: %lu rays, %lu flipped\n", policy, (unsigned long)r.evidence.rays_cast,
+               (unsigned long)r.triangles_flipped);
+        CHECK(r.evidence.rays_cast <= 64 * 2);
+        CHECK_EQ(r.triangles_flipped, 0);
+    }
+}
+
 static const test_case tests[] = {
     {"an engine's vertex buffer, split at seams, orients as its positions", test_engine_vertex_buffers},
     {"16-bit indices and double positions give the 32-bit float result", test_index_and_position_formats},
@@ -393,6 +419,7 @@ static const test_case tests[] = {
     {"the verdict and its one-line summary", test_verdict_and_summary},
     {"zero options are the defaults; unknown formats are refused", test_zero_options},
     {"TOPOLOGY_WELD joins corners a hair apart; weld reads doubles", test_weld_topology},
+    {"a quad casts at most 64 rays a triangle under every policy", test_small_mesh_few_rays},
 };
 
 int main(int argc, char **argv)
