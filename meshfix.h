@@ -797,6 +797,7 @@ typedef struct meshfix__mesh {
     unsigned int *queue;          /* triangles in patch order (inside `work`) */
     unsigned int *tri_patch;      /* union-find parent, then patch id (inside `work`) */
     unsigned short *tri_bits;
+    int areas_marked;             /* MESHFIX__TRI_NO_AREA is set (the geometric stages ask often) */
     unsigned int *vertex_work;    /* sort counts, then vertex marks */
     unsigned int *patch_start;    /* patch p owns queue[patch_start[p] .. patch_start[p + 1]) */
     unsigned int *patch_link;     /* union-find parent, then component id */
@@ -940,8 +941,7 @@ MESHFIX__PRIVATE int meshfix__spans_area(const float *a, const float *b, const f
 /* Marks triangles that repeat a vertex (no topology) and, with positions,
    triangles with a NaN or infinite corner (no geometry: every geometric
    stage skips them, so no NaN reaches a comparison, a bin or a loop
-   bound) and those without an area (asked by every geometric stage, so
-   asked once). Returns the degenerate count. */
+   bound). Returns the degenerate count. */
 MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
 {
     size_t t, count = 0;
@@ -953,9 +953,6 @@ MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
                                       meshfix__is_finite_point(meshfix__position(m, v[1])) &&
                                       meshfix__is_finite_point(meshfix__position(m, v[2]))))
             bits |= MESHFIX__TRI_NON_FINITE;
-        else if (m->positions != NULL && !degenerate &&
-                 !meshfix__spans_area(meshfix__position(m, v[0]), meshfix__position(m, v[1]), meshfix__position(m, v[2])))
-            bits |= MESHFIX__TRI_NO_AREA;
         m->tri_bits[t] = (unsigned short)bits;
         count += (size_t)degenerate;
     }
@@ -1162,12 +1159,14 @@ MESHFIX__PRIVATE void meshfix__weld_group(meshfix__welder *w, size_t vertex_coun
     MESHFIX_MEMSET(w->bucket_end, 0, buckets * sizeof(unsigned int));
     for (v = 0; v < vertex_count; ++v) {
         double c[3], p[3];
-        if (w->skip_non_finite &&
-            !meshfix__read_point(w->positions, w->stride, w->position_size, v, p)) {
+        int k;
+        if (!meshfix__read_point(w->positions, w->stride, w->position_size, v, p) && w->skip_non_finite) {
             w->home[v] = MESHFIX__NONE; /* in no bucket */
             continue;
         }
-        meshfix__vertex_cell(w, (unsigned int)v, c);
+        for (k = 0; k < 3; ++k)
+            p[k] = p[k] == 0.0 ? 0.0 : p[k]; /* -0 welds to +0 (meshfix__weld_load) */
+        meshfix__weld_cell(w, p, c);
         w->home[v] = (unsigned int)meshfix__weld_hash(c, w->mask);
         w->bucket_end[w->home[v]]++;
     }
@@ -3558,7 +3557,23 @@ MESHFIX__PRIVATE void meshfix__relative_normal(const meshfix__mesh *m, unsigned 
 
 MESHFIX__PRIVATE int meshfix__has_area(const meshfix__mesh *m, unsigned int t)
 {
-    return meshfix__has_geometry(m, t) && !(m->tri_bits[t] & MESHFIX__TRI_NO_AREA);
+    const unsigned int *v = m->indices + 3 * (size_t)t;
+    if (!meshfix__has_geometry(m, t))
+        return 0;
+    if (m->areas_marked)
+        return !(m->tri_bits[t] & MESHFIX__TRI_NO_AREA);
+    return meshfix__spans_area(meshfix__position(m, v[0]), meshfix__position(m, v[1]), meshfix__position(m, v[2]));
+}
+
+/* Asked once for every triangle by the geometric stages, which ask
+   whether a triangle has an area again and again. */
+MESHFIX__PRIVATE void meshfix__mark_areas(meshfix__mesh *m)
+{
+    unsigned int t;
+    for (t = 0; t < m->triangle_count; ++t)
+        if (!meshfix__has_area(m, t))
+            m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | MESHFIX__TRI_NO_AREA);
+    m->areas_marked = 1;
 }
 
 /* The frame of triangle t relative to its unit's: 1 when reversed. */
@@ -5687,6 +5702,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, meshfix__aren
     g.m = m;
     g.o = m->options;
     g.arena = *arena;
+    meshfix__mark_areas(m);
     g.seed = m->options->seed != 0 ? m->options->seed : 0x5EEDu;
     g.sigma = m->options->evidence.sigma > 0 ? (double)m->options->evidence.sigma : 3.0;
     m->confidence = (float *)meshfix__take(&g.arena, m->patch_count, sizeof(float));
