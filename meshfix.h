@@ -1956,16 +1956,27 @@ MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned
 /* ===== >>orient ===== */
 
 /* Corners of t relative to origin, and its normal (b - a) x (c - a), twice
-   its area long. */
+   its area long. The normal comes from the positions as given, in the
+   operations of meshfix__spans_area: about a far origin the corners of a
+   small triangle round together, and the report would count as without
+   an area a triangle that meshfix_check does not find. */
 MESHFIX__PRIVATE void meshfix__load_triangle(const meshfix__mesh *m, unsigned int t, const double origin[3],
                                             double a[3], double b[3], double c[3], double n[3])
 {
+    const float *p = meshfix__position(m, m->indices[3 * t]), *q = meshfix__position(m, m->indices[3 * t + 1]);
+    const float *r = meshfix__position(m, m->indices[3 * t + 2]);
+    double u[3], v[3];
+    int k;
     meshfix__load_corner(m, m->indices[3 * t], origin, a);
     meshfix__load_corner(m, m->indices[3 * t + 1], origin, b);
     meshfix__load_corner(m, m->indices[3 * t + 2], origin, c);
-    n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
-    n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
-    n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    for (k = 0; k < 3; ++k) {
+        u[k] = (double)q[k] - (double)p[k];
+        v[k] = (double)r[k] - (double)p[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
 }
 
 /* The caller's normal of triangle t: its own (triangle normals), or the
@@ -2608,7 +2619,9 @@ MESHFIX__PRIVATE void meshfix__builder_slots(meshfix__bvh *b, const meshfix__mes
    units are the ones that ask few rays per triangle (a closed shell of a
    million triangles settles its side with a hundred), and SAH where the
    boxes are large keeps most of the tree's quality. */
+#ifndef MESHFIX__MORTON_MIN /* the fuzzers lower both to reach these paths with small meshes */
 #define MESHFIX__MORTON_MIN 4096
+#endif
 #define MESHFIX__CLUSTER 32
 
 typedef struct meshfix__morton {
@@ -2742,7 +2755,9 @@ MESHFIX__PRIVATE void meshfix__cut_clusters(const unsigned int *codes, unsigned 
    its own (never from inside another task), and every chunk writes the
    same bits wherever it runs. */
 #define MESHFIX__MORTON_CHUNKS 64
+#ifndef MESHFIX__PARALLEL_UNIT
 #define MESHFIX__PARALLEL_UNIT 65536 /* triangles from which a unit's own build is parallel */
+#endif
 #define MESHFIX__BUILD_CENTROIDS 0   /* corners into waiting, centroids, each chunk's box of them */
 #define MESHFIX__BUILD_CODES 1
 #define MESHFIX__BUILD_GATHER 2      /* corners in code order */

@@ -111,6 +111,8 @@ check "outputs: $CC -O0 (the reference)" outputs O0 $CC -O0
 check "outputs: $CC -O2 gives the reference's" same_outputs O2 $CC -O2
 check "outputs: $CC -O3 -ffast-math gives the reference's" same_outputs fast $CC -O3 -ffast-math
 check "outputs: $CC -O2 -DMESHFIX_NO_SIMD (the scalar path) gives the reference's" same_outputs scalar $CC -O2 -DMESHFIX_NO_SIMD
+check "outputs: $CC -O2 with Morton-cluster trees from 16 triangles gives the reference's" same_outputs morton \
+    $CC -O2 -DMESHFIX__MORTON_MIN=16
 if command -v clang >/dev/null 2>&1; then
     check "outputs: clang -O2 gives the reference's" same_outputs clang clang -O2
     check "outputs: clang -Ofast gives the reference's" same_outputs clangfast clang -Ofast

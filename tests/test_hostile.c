@@ -921,6 +921,24 @@ static void test_tiny_meshes_in_exact_scratch(void)
         }
 }
 
+/* A small triangle in the patch of a huge one: its areas' sum took each
+   corner relative to the patch's first vertex, 10^30 away, where its
+   x coordinates round together and its area to 0; meshfix_check looked
+   for a triangle without an area from the positions as given and found
+   none, so its failure named no triangle. The two now agree. */
+static void test_small_triangle_far_from_its_patch(void)
+{
+    static const float positions[12] = {1e30f, 0, 0, 0, 0, 0, 0, 1e-3f, 0, 1e-3f, 0, 0};
+    static const unsigned int indices[6] = {0, 1, 2, 1, 3, 2};
+    meshfix_report r;
+    meshfix_check_failure why;
+    CHECK_EQ(meshfix_inspect(indices, 6, positions, 4, 12, NULL, &r, NULL), MESHFIX_OK);
+    CHECK_EQ(r.mesh.patches, 1);
+    CHECK_EQ(r.mesh.triangles_zero_area, 0);
+    CHECK(meshfix_check(indices, 6, positions, 4, 12, MESHFIX_REQUIRE_NO_DEGENERATE, NULL, &why));
+    CHECK(why.triangle == (size_t)-1);
+}
+
 static const test_case tests[] = {
     {"bad input refused under every policy, nothing written", test_matrix_refusals},
     {"odd input accepted: NaN/Inf, degenerate, duplicates, edges of 3..64, empty", test_matrix_accepted},
@@ -937,6 +955,7 @@ static const test_case tests[] = {
     {"fuzz: two fans on two edges are two components", test_components_of_two_fans},
     {"fuzz: fresh memory filled two ways gives the same answer under every policy", test_no_reads_of_unwritten_memory},
     {"fuzz: tiny meshes in exact scratch under every policy, no allocation", test_tiny_meshes_in_exact_scratch},
+    {"fuzz: a small triangle far from its patch's first vertex has its area", test_small_triangle_far_from_its_patch},
 };
 
 int main(void)
