@@ -2815,7 +2815,7 @@ MESHFIX__PRIVATE void meshfix__morton_chunk(void *context, size_t chunk)
         } else if (k->phase == MESHFIX__BUILD_COUNTS) {
             unsigned int size = k->starts[i + 1] - k->starts[i];
             k->bases[i] = size > MESHFIX__LEAF ? meshfix__morton_count(k->codes, k->starts[i], size) : 0u;
-        } else if (k->starts[i + 1] - k->starts[i] > MESHFIX__LEAF) {
+        } else if (k->phase == MESHFIX__BUILD_SUBTREES && k->starts[i + 1] - k->starts[i] > MESHFIX__LEAF) {
             meshfix__morton sub;
             float box[6];
             sub.corners = k->slots;
