@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "../../examples/meshio.h"
+#include "../../meshfix.h" /* the declarations, for counting_options */
 
 namespace bench {
 
@@ -113,6 +114,22 @@ inline void counting_free(void *p, void *user)
     a->current -= block[0];
     std::free(block);
 }
+
+// Options that count every allocation of a call into `counter`.
+inline meshfix_options counting_options(CountingAllocator *counter)
+{
+    meshfix_options options;
+    std::memset(&options, 0, sizeof(options));
+    options.memory.alloc_func = counting_alloc;
+    options.memory.free_func = counting_free;
+    options.memory.user_data = counter;
+    return options;
+}
+
+// OpenMesh building its half-edge structure of g (add_vertex + add_face):
+// the baseline of parts 0 and 2 (tests/bench/cut.cpp). Returns the faces it
+// refused as complex.
+size_t openmesh_build(const mio_mesh &g);
 
 // Small deterministic generator (xorshift64*), independent of meshfix's.
 struct Random {

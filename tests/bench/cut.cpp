@@ -33,12 +33,10 @@
 #include <OpenMesh/Core/System/omstream.hh>
 
 namespace bench {
-namespace {
 
 typedef OpenMesh::TriMesh_ArrayKernelT<> OmMesh;
 
-// Faces OpenMesh refused.
-static size_t openmesh_build(const mio_mesh &g)
+size_t openmesh_build(const mio_mesh &g)
 {
     OmMesh om;
     om.reserve(g.vertex_count, 3 * g.index_count / 2, g.index_count / 3);
@@ -50,6 +48,8 @@ static size_t openmesh_build(const mio_mesh &g)
         refused += !om.add_face(v[g.indices[3 * t]], v[g.indices[3 * t + 1]], v[g.indices[3 * t + 2]]).is_valid();
     return refused;
 }
+
+namespace {
 
 // parallel_for with `*user` std::threads, thread t taking tasks t, t + n, ...
 static void thread_parallel_for(void (*task)(void *, size_t), void *context, size_t count, void *user)
@@ -156,16 +156,12 @@ static void run_variant(const mio_mesh &cut, const std::vector<unsigned int> &pa
     auto count_allocations = [&](meshfix_policy policy, const float *positions, size_t *calls, size_t *peak,
                                  double *scratch_per_triangle) {
         CountingAllocator counter;
-        meshfix_options o;
-        std::memset(&o, 0, sizeof(o));
+        meshfix_options o = counting_options(&counter);
         o.policy = policy;
         size_t bytes = meshfix_scratch_size(g.index_count, g.vertex_count, &o);
         std::vector<unsigned char> scratch(bytes + 1);
         o.memory.scratch = scratch.data();
         o.memory.scratch_size = bytes;
-        o.memory.alloc_func = counting_alloc;
-        o.memory.free_func = counting_free;
-        o.memory.user_data = &counter;
         orient(positions, &o);
         *calls = counter.calls;
         if (peak)
@@ -180,11 +176,7 @@ static void run_variant(const mio_mesh &cut, const std::vector<unsigned int> &pa
     {
         // what the default policy really holds at once when it allocates for itself
         CountingAllocator counter;
-        meshfix_options o;
-        std::memset(&o, 0, sizeof(o));
-        o.memory.alloc_func = counting_alloc;
-        o.memory.free_func = counting_free;
-        o.memory.user_data = &counter;
+        meshfix_options o = counting_options(&counter);
         orient(g.positions, &o);
         row->peak_free_default = counter.peak;
     }
