@@ -23,20 +23,12 @@ if [ -z "${PYTHON:-}" ]; then
     if [ -x /usr/bin/python3 ]; then PYTHON=/usr/bin/python3; else PYTHON=python3; fi
 fi
 export PYTHONDONTWRITEBYTECODE=1
+passed=0
 failed=0
 log="$work/last.log"
 
-check() { # name, command...
-    local name=$1
-    shift
-    if "$@" >"$log" 2>&1; then
-        echo "ok   $name"
-    else
-        failed=1
-        echo "FAIL $name"
-        sed 's/^/    /' "$log" | tail -25
-    fi
-}
+check_log="$log"
+. tests/check.sh
 
 if ! command -v "$PYTHON" >/dev/null 2>&1; then
     echo "SKIP python: no $PYTHON (apt-get install python3 python3-numpy python3-pytest)"
@@ -153,4 +145,4 @@ else
     echo "SKIP python: pip install ./python: missing$missing"
 fi
 
-exit $failed
+[ "$failed" -eq 0 ]

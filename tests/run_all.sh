@@ -12,18 +12,8 @@ mkdir -p "$out"
 passed=0
 failed=0
 
-check() { # name, command...
-    local name=$1
-    shift
-    if "$@" >"$out/last.log" 2>&1; then
-        passed=$((passed + 1))
-        echo "ok   $name"
-    else
-        failed=$((failed + 1))
-        echo "FAIL $name"
-        sed 's/^/    /' "$out/last.log" | head -20
-    fi
-}
+check_log="$out/last.log"
+. tests/check.sh
 
 suite() { # name, command...: adds the command's own "N passed, N failed" line
     local name=$1

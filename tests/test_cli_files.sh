@@ -28,18 +28,8 @@ failed=0
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/meshfix_files.XXXXXX") || exit 1
 trap 'rm -rf "$tmp"' EXIT
 
-check() { # name, command...: passes when the command exits 0
-    local name=$1
-    shift
-    if "$@" >"$tmp/last.log" 2>&1; then
-        passed=$((passed + 1))
-        echo "ok   $name"
-    else
-        failed=$((failed + 1))
-        echo "FAIL $name"
-        sed 's/^/    /' "$tmp/last.log" | head -20
-    fi
-}
+check_log="$tmp/last.log"
+. tests/check.sh
 
 for need in "$M:make build/meshfix" "$ASSIMP/OBJ/spider.obj:apt-get install assimp-testmodels" \
             "$OCCT/motor.stl:apt-get install occt-misc"; do

@@ -14,6 +14,7 @@ case "$work" in /*) ;; *) work="$root/$work" ;; esac
 rm -rf "$work"
 mkdir -p "$work"
 log="$work/last.log"
+passed=0
 failed=0
 CC=${CC:-cc}
 CMAKE=${CMAKE:-cmake}
@@ -21,17 +22,8 @@ CTEST=${CTEST:-ctest}
 PKG_CONFIG=${PKG_CONFIG:-pkg-config}
 JOBS=${JOBS:-2}
 
-check() { # name, command...
-    local name=$1
-    shift
-    if "$@" >"$log" 2>&1; then
-        echo "ok   $name"
-    else
-        failed=1
-        echo "FAIL $name"
-        sed 's/^/    /' "$log" | tail -25
-    fi
-}
+check_log="$log"
+. tests/check.sh
 
 if ! command -v "$CMAKE" >/dev/null 2>&1; then
     for name in "cmake: configure, build and install meshfix" "cmake: consumer through add_subdirectory" \
@@ -157,4 +149,4 @@ tests_option() {
 }
 check "cmake: MESHFIX_BUILD_TESTS=ON: test_meshfix, test_sdf, test_api built and passed under ctest" tests_option
 
-exit $failed
+[ "$failed" -eq 0 ]
