@@ -118,6 +118,13 @@ struct Result {
     bool failed = false;
 };
 
+// One size of a family (g: 0 the smaller, 1 the larger): its time and size.
+static void record(Result *r, int g, const Timing &t, double size)
+{
+    (g ? r->t_large : r->t_small) = t.min;
+    (g ? r->size_large : r->size_small) = size;
+}
+
 // At least `runs` runs, more while they add up to under half a second
 // (small cases are over in a few ms, where one context switch shows).
 template <class F> Timing time_enough(int runs, F f)
@@ -166,6 +173,16 @@ static Timing time_inspect(const Soup &s, int runs, meshfix_report *report, bool
             MESHFIX_OK)
             *failed = true;
     });
+}
+
+// Inspect and the default policy on one size of a family, into their
+// rows; inspect's report and the repaired indices stay for the notes.
+static void inspect_and_orient(const Soup &soup, int g, int runs, Result *inspect, Result *orient,
+                               meshfix_report *report, std::vector<unsigned int> *out)
+{
+    std::memset(report, 0, sizeof(*report));
+    record(inspect, g, time_inspect(soup, runs, report, &inspect->failed), double(soup.triangles()));
+    record(orient, g, time_orient(soup, runs, out, &orient->failed), double(soup.triangles()));
 }
 
 } // namespace
@@ -247,13 +264,12 @@ int part_adversarial(const Settings &s, std::vector<std::string> *summary)
                 if (meshfix_weld(remap.data(), points.data(), sizes[g], 12, tolerance, nullptr, &unique) != MESHFIX_OK)
                     r.failed = true;
             });
-            (g ? r.t_large : r.t_small) = t.min;
-            (g ? r.size_large : r.size_small) = double(sizes[g]);
+            record(&r, g, t, double(sizes[g]));
             char note[64];
             std::snprintf(note, sizeof(note), "%s%zu unique", g ? " / " : "", unique);
             r.note += note;
         }
-        print_row(tolerance == 0 ? "weld, random points in a cube" : "weld, random points in a cube",
+        print_row("weld, random points in a cube",
                   tolerance == 0 ? "meshfix_weld, tolerance 0" : "meshfix_weld, tolerance 1e-3", r, summary);
         status |= r.failed;
     }
@@ -265,14 +281,8 @@ int part_adversarial(const Settings &s, std::vector<std::string> *summary)
             Soup soup;
             hypergraph(g ? 64 : 40, twice, &soup);
             meshfix_report report;
-            std::memset(&report, 0, sizeof(report));
-            Timing ti = time_inspect(soup, runs, &report, &inspect.failed);
             std::vector<unsigned int> out;
-            Timing to = time_orient(soup, runs, &out, &orient.failed);
-            (g ? inspect.t_large : inspect.t_small) = ti.min;
-            (g ? orient.t_large : orient.t_small) = to.min;
-            (g ? inspect.size_large : inspect.size_small) = double(soup.triangles());
-            (g ? orient.size_large : orient.size_small) = double(soup.triangles());
+            inspect_and_orient(soup, g, runs, &inspect, &orient, &report, &out);
             char note[128];
             std::snprintf(note, sizeof(note), "%sk=%d: %zu duplicates, %zu non-manifold edges", g ? "; " : "",
                           g ? 64 : 40, report.mesh.triangles_duplicate, report.mesh.edges_non_manifold);
@@ -296,14 +306,8 @@ int part_adversarial(const Settings &s, std::vector<std::string> *summary)
             else
                 one_edge(sizes[g], &soup);
             meshfix_report report;
-            std::memset(&report, 0, sizeof(report));
-            Timing ti = time_inspect(soup, runs, &report, &inspect.failed);
             std::vector<unsigned int> out;
-            Timing to = time_orient(soup, runs, &out, &orient.failed);
-            (g ? inspect.t_large : inspect.t_small) = ti.min;
-            (g ? orient.t_large : orient.t_small) = to.min;
-            (g ? inspect.size_large : inspect.size_small) = double(sizes[g]);
-            (g ? orient.size_large : orient.size_small) = double(sizes[g]);
+            inspect_and_orient(soup, g, runs, &inspect, &orient, &report, &out);
             size_t flips = 0;
             for (size_t i = 0; i < out.size(); i += 3)
                 flips += out[i + 1] != soup.indices[i + 1];
