@@ -1967,10 +1967,10 @@ MESHFIX__PRIVATE void meshfix__load_triangle(const meshfix__mesh *m, unsigned in
     const float *r = meshfix__position(m, m->indices[3 * t + 2]);
     double u[3], v[3];
     int k;
-    meshfix__load_corner(m, m->indices[3 * t], origin, a);
-    meshfix__load_corner(m, m->indices[3 * t + 1], origin, b);
-    meshfix__load_corner(m, m->indices[3 * t + 2], origin, c);
     for (k = 0; k < 3; ++k) {
+        a[k] = (double)p[k] - origin[k];
+        b[k] = (double)q[k] - origin[k];
+        c[k] = (double)r[k] - origin[k];
         u[k] = (double)q[k] - (double)p[k];
         v[k] = (double)r[k] - (double)p[k];
     }
