@@ -85,7 +85,7 @@
        meshfix_summary       a report in one line of plain words
        meshfix_weld          merge vertices closer than a tolerance (soups, CAD)
        meshfix_scratch_size  bytes of scratch memory a call needs at most
-       meshfix_result_string, meshfix_verdict_string
+       meshfix_result_string, meshfix_verdict_string, meshfix_policy_string, meshfix_policy_from_string
 
    ALGORITHM (orient, inspect and check share it; sections of the
    implementation below are in this order)
@@ -215,7 +215,8 @@ extern "C" {
     X(MESHFIX_ERROR_POSITIONS_REQUIRED, "the chosen policy needs vertex positions") \
     X(MESHFIX_ERROR_SCRATCH_TOO_SMALL, "options.memory.scratch is smaller than meshfix_scratch_size()") \
     X(MESHFIX_ERROR_OUT_OF_MEMORY, "out of memory") \
-    X(MESHFIX_ERROR_NON_FINITE, "a position is NaN or infinite (meshfix_weld)")
+    X(MESHFIX_ERROR_NON_FINITE, "a position is NaN or infinite (meshfix_weld)") \
+    X(MESHFIX_ERROR_NORMALS_REQUIRED, "MESHFIX_POLICY_NORMALS needs options.evidence.triangle_normals or vertex_normals")
 
 #define MESHFIX__RESULT_ENUM(name, text) name,
 typedef enum meshfix_result {
@@ -508,6 +509,11 @@ MESHFIX_API size_t meshfix_summary(const meshfix_report *report, char *buffer, s
 /* Static, never NULL, English texts. */
 MESHFIX_API const char *meshfix_result_string(meshfix_result result);
 MESHFIX_API const char *meshfix_verdict_string(meshfix_verdict verdict);
+/* A policy's name in lower case ("auto", "seed", ..., "normals"; "unknown
+   policy" out of range), and back (MESHFIX_POLICY_COUNT for a name that is
+   none): the names the command-line tool and the bindings take. */
+MESHFIX_API const char *meshfix_policy_string(meshfix_policy policy);
+MESHFIX_API meshfix_policy meshfix_policy_from_string(const char *name);
 
 #ifdef __cplusplus
 }
@@ -5964,6 +5970,19 @@ MESHFIX__PRIVATE void meshfix__debug_check_orientation(const meshfix__mesh *m)
 
 /* ===== >>pipeline ===== */
 
+/* What each policy needs from the caller, and whether it decides by units,
+   trees and rays: the pipeline asks this table and nothing else. */
+typedef struct meshfix__policy_traits {
+    const char *name;
+    unsigned char positions; /* refused without positions (AUTO becomes MAJORITY instead) */
+    unsigned char normals;   /* refused without the caller's normals */
+    unsigned char geometry;  /* units, coherence, volume and rays */
+} meshfix__policy_traits;
+
+static const meshfix__policy_traits meshfix__policies[MESHFIX_POLICY_COUNT] = {
+    {"auto", 0, 0, 1},       {"seed", 0, 0, 0}, {"majority", 0, 0, 0}, {"outward", 1, 0, 1},
+    {"sdf", 1, 0, 0},        {"visibility", 1, 0, 1}, {"up", 1, 0, 0}, {"normals", 1, 1, 0}};
+
 MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, const meshfix__plan *plan,
                                     const meshfix__input *in, size_t vertex_range, const meshfix_options *options,
                                     meshfix_outputs *outputs, int policy)
@@ -5990,13 +6009,14 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
 }
 
 /* The geometric policies build units, trees and rays, except for one
-   closed shell alone: nothing can enclose it, its volume decides. */
+   closed shell alone under AUTO and OUTWARD: nothing can enclose it, its
+   volume decides. */
 MESHFIX__PRIVATE int meshfix__needs_geometry(const meshfix__mesh *m, int policy)
 {
+    if (policy < 0 || !meshfix__policies[policy].geometry)
+        return 0;
     if (policy == MESHFIX_POLICY_VISIBILITY)
         return m->patch_count != 0;
-    if (policy != MESHFIX_POLICY_AUTO && policy != MESHFIX_POLICY_OUTWARD)
-        return 0;
     return m->patch_count > 1 || (m->patch_count == 1 && !meshfix__is_closed_orientable(m, 0));
 }
 
@@ -6229,9 +6249,11 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call, const meshfix_
         return result;
     if (policy == MESHFIX_POLICY_AUTO && in->positions == NULL)
         policy = MESHFIX_POLICY_MAJORITY;
-    if ((policy == MESHFIX_POLICY_OUTWARD || policy == MESHFIX_POLICY_SDF || policy == MESHFIX_POLICY_VISIBILITY ||
-         policy == MESHFIX_POLICY_UP) && in->positions == NULL)
+    if (policy >= 0 && meshfix__policies[policy].positions && in->positions == NULL)
         return MESHFIX_ERROR_POSITIONS_REQUIRED;
+    if (policy >= 0 && meshfix__policies[policy].normals && options.evidence.triangle_normals == NULL &&
+        options.evidence.vertex_normals == NULL)
+        return MESHFIX_ERROR_NORMALS_REQUIRED;
     if (!meshfix__options_valid(&options, policy))
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     MESHFIX_MEMSET(&r, 0, sizeof(r));
@@ -6830,6 +6852,25 @@ MESHFIX_API const char *meshfix_verdict_string(meshfix_verdict verdict)
                                         "inside out", "unknown verdict"};
     unsigned int i = (unsigned int)verdict;
     return texts[i < 6u ? i : 6u];
+}
+
+MESHFIX_API const char *meshfix_policy_string(meshfix_policy policy)
+{
+    unsigned int i = (unsigned int)policy;
+    return i < (unsigned int)MESHFIX_POLICY_COUNT ? meshfix__policies[i].name : "unknown policy";
+}
+
+MESHFIX_API meshfix_policy meshfix_policy_from_string(const char *name)
+{
+    unsigned int i, k;
+    for (i = 0; name != NULL && i < (unsigned int)MESHFIX_POLICY_COUNT; ++i) {
+        const char *known = meshfix__policies[i].name;
+        for (k = 0; known[k] != 0 && name[k] == known[k]; ++k)
+            ;
+        if (known[k] == 0 && name[k] == 0)
+            return (meshfix_policy)i;
+    }
+    return MESHFIX_POLICY_COUNT;
 }
 
 MESHFIX_API const char *meshfix_result_string(meshfix_result result)

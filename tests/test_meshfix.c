@@ -509,6 +509,38 @@ static void test_errors_change_nothing(void)
     o.policy = MESHFIX_POLICY_OUTWARD;
     outputs.flipped = NULL;
     CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, &o, &r, &outputs), MESHFIX_ERROR_POSITIONS_REQUIRED);
+    /* NORMALS compares the caller's normals with the faces: without
+       positions, or without normals, it has nothing to go on */
+    {
+        float normals[12] = {0, 0, -1, 0, -1, 0, -1, 0, 0, 1, 1, 1};
+        o.policy = MESHFIX_POLICY_NORMALS;
+        o.evidence.triangle_normals = normals;
+        r = sentinel;
+        memcpy(out, tetra_indices, sizeof(out));
+        CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, &o, &r, &outputs), MESHFIX_ERROR_POSITIONS_REQUIRED);
+        CHECK(memcmp(&r, &sentinel, sizeof(r)) == 0);
+        CHECK_EQ(meshfix_orient(out, tetra_indices, 12, tetra_positions, 4, 12, &o, &r, &outputs), MESHFIX_OK);
+        o.evidence.triangle_normals = NULL;
+        r = sentinel;
+        CHECK_EQ(meshfix_orient(out, tetra_indices, 12, tetra_positions, 4, 12, &o, &r, &outputs),
+                 MESHFIX_ERROR_NORMALS_REQUIRED);
+        CHECK(memcmp(&r, &sentinel, sizeof(r)) == 0);
+        o.evidence.vertex_normals = normals;
+        CHECK_EQ(meshfix_orient(out, tetra_indices, 12, tetra_positions, 4, 12, &o, &r, &outputs), MESHFIX_OK);
+        o.evidence.vertex_normals = NULL;
+    }
+    {
+        /* the names the tool and the bindings take, both ways */
+        int p;
+        for (p = 0; p < (int)MESHFIX_POLICY_COUNT; ++p)
+            CHECK_EQ((int)meshfix_policy_from_string(meshfix_policy_string((meshfix_policy)p)), p);
+        CHECK(strcmp(meshfix_policy_string(MESHFIX_POLICY_VISIBILITY), "visibility") == 0);
+        CHECK_EQ((int)meshfix_policy_from_string("Auto"), (int)MESHFIX_POLICY_COUNT);
+        CHECK_EQ((int)meshfix_policy_from_string("autox"), (int)MESHFIX_POLICY_COUNT);
+        CHECK_EQ((int)meshfix_policy_from_string("aut"), (int)MESHFIX_POLICY_COUNT);
+        CHECK_EQ((int)meshfix_policy_from_string(NULL), (int)MESHFIX_POLICY_COUNT);
+        CHECK(strcmp(meshfix_policy_string((meshfix_policy)99), "unknown policy") == 0);
+    }
     o.policy = (meshfix_policy)99;
     CHECK_EQ(meshfix_orient(out, tetra_indices, 12, NULL, 4, 0, &o, &r, &outputs), MESHFIX_ERROR_INVALID_ARGUMENT);
     CHECK_EQ(meshfix_orient(out, tetra_indices, (size_t)0x80000001, NULL, 4, 0, NULL, &r, NULL), MESHFIX_ERROR_TOO_LARGE);
