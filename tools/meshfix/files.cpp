@@ -8,6 +8,7 @@ extern "C" {
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <dirent.h>
@@ -93,18 +94,53 @@ bool read_file(const std::string &path, std::string &data, std::string &error)
     return true;
 }
 
+/* Every byte written and on the disk before the file is renamed over its
+   target: a full disk or a failing device is an error here, never a
+   truncated file in place of the user's. */
 bool write_bytes(const std::string &path, const std::string &bytes, std::string &error)
 {
-    FILE *f = std::fopen(path.c_str(), "wb");
-    if (f == nullptr) {
+    int fd;
+    do
+        fd = open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    while (fd < 0 && errno == EINTR);
+    if (fd < 0) {
         error = "cannot write '" + path + "': " + std::strerror(errno);
         return false;
     }
-    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    ok = std::fclose(f) == 0 && ok;
-    if (!ok)
-        error = "error writing '" + path + "'";
-    return ok;
+    size_t done = 0;
+    int failure = 0;
+    while (done < bytes.size() && failure == 0) {
+        ssize_t n = write(fd, bytes.data() + done, bytes.size() - done);
+        if (n > 0)
+            done += (size_t)n;
+        else if (n < 0 && errno != EINTR)
+            failure = errno;
+        else if (n == 0)
+            failure = EIO;
+    }
+    if (failure == 0 && fsync(fd) != 0 && errno != EINVAL && errno != EROFS)
+        failure = errno; /* EINVAL, EROFS: a file system without fsync (a pipe, /dev/null) */
+    if (close(fd) != 0 && failure == 0 && errno != EINTR)
+        failure = errno;
+    if (failure != 0) {
+        error = "error writing '" + path + "': " + std::strerror(failure);
+        return false;
+    }
+    return true;
+}
+
+bool make_parent_directories(const std::string &file)
+{
+    /* from the first '/' after the first character: "/a/b/f" makes /a and
+       /a/b, "a/b/f" makes a and a/b, "f" nothing */
+    for (size_t slash = file.find('/', 1); slash != std::string::npos; slash = file.find('/', slash + 1)) {
+        if (file[slash - 1] == '/')
+            continue;
+        std::string d = file.substr(0, slash);
+        if (mkdir(d.c_str(), 0777) != 0 && errno != EEXIST)
+            return false;
+    }
+    return true;
 }
 
 bool check_target(const std::string &target, std::string &error)
@@ -193,25 +229,104 @@ void remove_tree(const std::string &directory)
     rmdir(directory.c_str());
 }
 
-bool make_directories(const std::string &base, const std::string &relative)
+} // namespace
+
+std::string path_identity(const std::string &path)
 {
-    for (size_t slash = relative.find('/'); slash != std::string::npos; slash = relative.find('/', slash + 1)) {
-        std::string d = base + "/" + relative.substr(0, slash);
-        if (mkdir(d.c_str(), 0777) != 0 && errno != EEXIST)
-            return false;
+    std::string directory = directory_of(path), name = base_name(path);
+    if (name == "." || name == "..") {
+        directory = path;
+        name.clear();
     }
+    char *resolved = realpath(directory.c_str(), nullptr);
+    if (resolved != nullptr) {
+        std::string id = std::string(resolved) + (name.empty() ? "" : "/" + name);
+        std::free(resolved);
+        return id;
+    }
+    /* a directory not made yet: the path made absolute and cleaned up as
+       text ("a/./b//c" is "a/b/c", "a/x/../b" is "a/b") */
+    std::string absolute = path;
+    if (path.empty() || path[0] != '/') {
+        char *cwd = getcwd(nullptr, 0);
+        absolute = std::string(cwd != nullptr ? cwd : ".") + "/" + path;
+        std::free(cwd);
+    }
+    std::vector<std::string> parts;
+    for (size_t at = 0; at <= absolute.size();) {
+        size_t slash = absolute.find('/', at);
+        std::string part = absolute.substr(at, slash == std::string::npos ? std::string::npos : slash - at);
+        if (part == "..") {
+            if (!parts.empty())
+                parts.pop_back();
+        } else if (!part.empty() && part != ".") {
+            parts.push_back(part);
+        }
+        if (slash == std::string::npos)
+            break;
+        at = slash + 1;
+    }
+    std::string id;
+    for (const std::string &part : parts)
+        id += "/" + part;
+    return id.empty() ? "/" : id;
+}
+
+bool Ledger::add_temporary(const std::string &directory)
+{
+    std::lock_guard<std::mutex> lock(mutex);
+    if (stopped)
+        return false;
+    temporaries.insert(directory);
     return true;
 }
 
-} // namespace
+void Ledger::remove_temporary(const std::string &directory)
+{
+    std::lock_guard<std::mutex> lock(mutex);
+    temporaries.erase(directory);
+}
+
+bool Ledger::claim(const std::vector<std::string> &files, const std::string &owner, std::string &error)
+{
+    std::vector<std::string> ids;
+    for (const std::string &f : files) {
+        ids.push_back(path_identity(f));
+        auto found = owners.find(ids.back());
+        if (found != owners.end() && found->second != owner) {
+            error = "cannot write '" + f + "': it was written for '" + found->second + "' in this run";
+            return false;
+        }
+    }
+    for (const std::string &id : ids)
+        owners.emplace(id, owner);
+    return true;
+}
+
+void Ledger::stop()
+{
+    std::lock_guard<std::mutex> lock(mutex);
+    stopped = true;
+    for (const std::string &d : temporaries)
+        remove_tree(d);
+    temporaries.clear();
+}
 
 std::string OutputSet::reserve(const std::string &target, std::string &error)
 {
-    /* mkdir fails when the name is taken, so two runs (or two threads with
-       the same target) never share a temporary */
+    /* beside the target, so the final rename stays on one file system;
+       named with a leading dot, so a later walk of the directory skips it.
+       mkdir fails when the name is taken, so two runs (or two threads
+       with the same target) never share a temporary */
+    std::string stem = directory_of(target) + "/." + base_name(target) + ".meshfix-" + std::to_string((long)getpid());
     for (int k = 0; k < 100; ++k) {
-        std::string directory = target + ".meshfix-" + std::to_string((long)getpid()) + "-" + std::to_string(k) + ".tmp";
+        std::string directory = stem + "-" + std::to_string(k) + ".tmp";
         if (mkdir(directory.c_str(), 0700) == 0) {
+            if (!ledger.add_temporary(directory)) {
+                rmdir(directory.c_str());
+                error = "cannot write '" + target + "': interrupted";
+                return "";
+            }
             items.push_back({target, directory});
             return directory + "/" + base_name(target);
         }
@@ -224,30 +339,56 @@ std::string OutputSet::reserve(const std::string &target, std::string &error)
 
 bool OutputSet::commit(std::string &error)
 {
+    /* one set moves into place under the ledger's lock: an interrupt waits
+       for it, so the files of one input (a .gltf and its .bin) never end
+       up half old and half new */
+    std::lock_guard<std::mutex> lock(ledger.mutex);
+    if (ledger.stopped) {
+        error = "interrupted";
+        return false;
+    }
+    std::vector<std::pair<std::string, std::string>> moves;
     for (const Item &item : items) {
         std::vector<std::string> files;
         list_files(item.directory, "", files);
-        std::string destination = directory_of(item.target);
-        for (const std::string &f : files) {
-            std::string from = item.directory + "/" + f, to = destination + "/" + f;
-            struct stat st;
-            if (stat(to.c_str(), &st) == 0 && S_ISREG(st.st_mode))
-                chmod(from.c_str(), st.st_mode & 07777); /* a replaced file keeps its permissions */
-            if (!make_directories(destination, f) || std::rename(from.c_str(), to.c_str()) != 0) {
-                error = "cannot write '" + to + "': " + std::strerror(errno);
-                return false;
-            }
-            written.push_back(to);
-        }
+        std::sort(files.begin(), files.end());
+        for (const std::string &f : files)
+            moves.push_back({item.directory + "/" + f, directory_of(item.target) + "/" + f});
     }
-    discard();
+    std::vector<std::string> targets;
+    for (const auto &m : moves) {
+        if (!make_parent_directories(m.second)) {
+            error = "cannot write '" + m.second + "': " + std::strerror(errno);
+            return false;
+        }
+        targets.push_back(m.second);
+    }
+    if (!ledger.claim(targets, owner, error))
+        return false;
+    for (const auto &m : moves) {
+        struct stat st;
+        if (stat(m.second.c_str(), &st) == 0 && S_ISREG(st.st_mode))
+            chmod(m.first.c_str(), st.st_mode & 07777); /* a replaced file keeps its permissions */
+        if (std::rename(m.first.c_str(), m.second.c_str()) != 0) {
+            error = "cannot write '" + m.second + "': " + std::strerror(errno);
+            return false;
+        }
+        written.push_back(m.second);
+    }
+    for (const Item &item : items) {
+        remove_tree(item.directory);
+        ledger.temporaries.erase(item.directory);
+    }
+    items.clear();
     return true;
 }
 
 void OutputSet::discard()
 {
-    for (const Item &item : items)
+    for (const Item &item : items) {
         remove_tree(item.directory);
+        ledger.remove_temporary(item.directory);
+    }
     items.clear();
 }
 

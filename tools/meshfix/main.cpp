@@ -9,13 +9,17 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <dirent.h>
+#include <map>
 #include <mutex>
+#include <pthread.h>
 #include <new>
 #include <sys/stat.h>
 #include <thread>
@@ -232,6 +236,33 @@ bool expand_inputs(const CommandLine &c, std::vector<Job> &jobs)
     return true;
 }
 
+/* Two inputs whose outputs (or --mark files) would be one file, or an
+   output that is another input, are refused before anything is read: one
+   repair would be lost, or read half written. */
+bool check_collisions(const std::vector<Job> &jobs)
+{
+    std::map<std::string, size_t> inputs, outputs;
+    for (size_t i = 0; i < jobs.size(); ++i)
+        inputs.emplace(path_identity(jobs[i].input), i);
+    for (size_t i = 0; i < jobs.size(); ++i)
+        for (const std::string *target : {&jobs[i].output, &jobs[i].mark}) {
+            if (target->empty())
+                continue;
+            std::string id = path_identity(*target);
+            auto taken = outputs.emplace(id, i);
+            if (!taken.second && taken.first->second != i)
+                return fail_usage("'" + jobs[taken.first->second].input + "' and '" + jobs[i].input +
+                                  "' would both be written to '" + *target +
+                                  "': repair them in separate runs or into separate directories"),
+                       false;
+            auto input = inputs.find(id);
+            if (input != inputs.end() && input->second != i)
+                return fail_usage("'" + *target + "', the output for '" + jobs[i].input + "', is also an input"),
+                       false;
+        }
+    return true;
+}
+
 /* Whether every output can be written, before any input is read. */
 bool check_outputs(const CommandLine &c)
 {
@@ -247,7 +278,10 @@ bool check_outputs(const CommandLine &c)
             return fail_usage(error), false;
     }
     if (!c.output_dir.empty() && !is_directory(c.output_dir)) {
+        /* made with its parents: the nearest that exists must take them */
         std::string parent = directory_of(c.output_dir);
+        while (!is_directory(parent) && parent != directory_of(parent))
+            parent = directory_of(parent);
         if (!is_directory(parent) || access(parent.c_str(), W_OK) != 0)
             return fail_usage("cannot make the output directory '" + c.output_dir + "'"), false;
     }
@@ -262,30 +296,23 @@ bool check_outputs(const CommandLine &c)
     return true;
 }
 
-/* mkdir -p of the directory a file goes into. */
-void make_parents(const std::string &file)
+bool write_outputs(Job &job, Ledger &ledger)
 {
-    std::string d = directory_of(file);
-    for (size_t slash = 1; slash != std::string::npos; slash = d.find('/', slash + 1))
-        mkdir(d.substr(0, slash).c_str(), 0777);
-    mkdir(d.c_str(), 0777);
-}
-
-bool write_outputs(Job &job, const Settings &s)
-{
-    OutputSet outputs;
+    OutputSet outputs(ledger, job.input);
     std::string error, in = job.file->format(), out = job.output.empty() ? "" : format_of(job.output);
     bool ok = true;
     if (!job.output.empty()) {
-        make_parents(job.output);
-        std::string path = outputs.reserve(job.output, error);
+        std::string path = make_parent_directories(job.output) ? outputs.reserve(job.output, error) : "";
+        if (path.empty() && error.empty())
+            error = "cannot make the directory of '" + job.output + "': " + std::strerror(errno);
         bool same = in == out || (gltf_format(in) && gltf_format(out));
         ok = !path.empty() && (same ? job.file->write(path, job.output, error)
                                     : write_triangles(path, *job.file, job.results, false, error));
     }
     if (ok && !job.mark.empty()) {
-        make_parents(job.mark);
-        std::string path = outputs.reserve(job.mark, error);
+        std::string path = make_parent_directories(job.mark) ? outputs.reserve(job.mark, error) : "";
+        if (path.empty() && error.empty())
+            error = "cannot make the directory of '" + job.mark + "': " + std::strerror(errno);
         ok = !path.empty() && write_triangles(path, *job.file, job.results, true, error);
     }
     if (ok)
@@ -295,19 +322,18 @@ bool write_outputs(Job &job, const Settings &s)
         job.exit = 1;
         job.error = error;
     }
-    (void)s;
     return ok;
 }
 
 /* Load, repair, write; run_job catches running out of memory. */
-void run_job_steps(Job &job, const Settings &s);
+void run_job_steps(Job &job, const Settings &s, Ledger &ledger);
 
 } // namespace
 
-void run_job(Job &job, const Settings &s)
+void run_job(Job &job, const Settings &s, Ledger &ledger)
 {
     try {
-        run_job_steps(job, s);
+        run_job_steps(job, s, ledger);
     } catch (const std::bad_alloc &) {
         job.file.reset();
         job.results.clear();
@@ -318,7 +344,7 @@ void run_job(Job &job, const Settings &s)
 
 namespace {
 
-void run_job_steps(Job &job, const Settings &s)
+void run_job_steps(Job &job, const Settings &s, Ledger &ledger)
 {
     job.file = load_file(job.input, job.error);
     if (!job.file) {
@@ -342,7 +368,7 @@ void run_job_steps(Job &job, const Settings &s)
         if (!s.inspect)
             job.file->apply(i, job.results[i].changes);
     }
-    if (!write_outputs(job, s))
+    if (!write_outputs(job, ledger))
         return;
     if (s.check && something_wrong(job))
         job.exit = 3;
@@ -352,7 +378,8 @@ void run_job_steps(Job &job, const Settings &s)
    order as soon as it and those before it are done. */
 class Runner {
 public:
-    Runner(std::vector<Job> &all, const Settings &settings) : jobs(all), s(settings), done(all.size(), 0) {}
+    Runner(std::vector<Job> &all, const Settings &settings, Ledger &run)
+        : jobs(all), s(settings), ledger(run), done(all.size(), 0) {}
 
     void run(unsigned threads, bool progress, std::chrono::milliseconds delay)
     {
@@ -387,7 +414,7 @@ private:
             size_t i = next++;
             if (i >= jobs.size())
                 return;
-            run_job(jobs[i], s);
+            run_job(jobs[i], s, ledger);
             {
                 std::lock_guard<std::mutex> lock(mutex);
                 done[i] = 1;
@@ -423,6 +450,7 @@ private:
 
     std::vector<Job> &jobs;
     const Settings &s;
+    Ledger &ledger;
     std::vector<char> done;
     std::atomic<size_t> next{0};
     size_t count = 0;
@@ -430,6 +458,31 @@ private:
     std::mutex mutex;
     std::condition_variable changed;
 };
+
+/* SIGINT, SIGTERM and SIGHUP go to one thread that waits for them: it
+   removes the temporaries (after a commit under way has finished) and ends
+   the process by the same signal, so the caller sees it was interrupted.
+   Called before any other thread starts, which then inherit the mask. */
+void watch_interrupts(Ledger &ledger)
+{
+    sigset_t signals;
+    sigemptyset(&signals);
+    for (int signal : {SIGINT, SIGTERM, SIGHUP})
+        sigaddset(&signals, signal);
+    if (pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0)
+        return;
+    std::thread([&ledger, signals] {
+        int signal = 0;
+        if (sigwait(&signals, &signal) != 0)
+            return;
+        ledger.stop();
+        std::fprintf(stderr, "meshfix: interrupted; temporary files removed\n");
+        std::signal(signal, SIG_DFL);
+        pthread_sigmask(SIG_UNBLOCK, &signals, nullptr);
+        raise(signal);
+        _exit(128 + signal);
+    }).detach();
+}
 
 /* The first status that applies, in the order 1, 2, 3, else 0. */
 int overall_exit(const std::vector<Job> &jobs)
@@ -496,15 +549,18 @@ int main(int argc, char **argv)
     if (status >= 0)
         return status;
     std::vector<Job> jobs;
-    if (!expand_inputs(c, jobs) || !check_outputs(c))
+    if (!expand_inputs(c, jobs) || !check_collisions(jobs) || !check_outputs(c))
         return 1;
     const Settings &s = c.settings;
     bool batch = jobs.size() > 1 || !c.output_dir.empty();
-    if (!c.output_dir.empty())
-        make_parents(c.output_dir + "/.");
+    if (!c.output_dir.empty() && !make_parent_directories(c.output_dir + "/."))
+        return fail_usage("cannot make the output directory '" + c.output_dir + "': " + std::strerror(errno));
+    /* never destroyed: the watcher may use it until the process ends */
+    Ledger &ledger = *new Ledger;
+    watch_interrupts(ledger);
     unsigned threads = s.jobs != 0 ? s.jobs : std::max(1u, std::thread::hardware_concurrency());
     threads = std::min<unsigned>(threads, (unsigned)jobs.size());
-    Runner runner(jobs, s);
+    Runner runner(jobs, s, ledger);
     std::thread pool([&] {
         runner.run(threads, s.progress || (batch && isatty(2)), std::chrono::milliseconds(s.progress ? 250 : 1000));
     });

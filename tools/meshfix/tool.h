@@ -5,6 +5,9 @@
 
 #include "meshfile.h"
 
+#include <map>
+#include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -56,21 +59,52 @@ meshfix_report combined_report(const std::vector<UnitResult> &results, bool afte
 /* Reads a regular file whole; a directory, FIFO or device is refused
    before anything is read from it. */
 bool read_file(const std::string &path, std::string &data, std::string &error);
+/* Writes the file whole and syncs it; false and an error on any failure
+   (a full disk included). */
 bool write_bytes(const std::string &path, const std::string &bytes, std::string &error);
+/* mkdir -p of the directories a file goes into; false when one cannot be made. */
+bool make_parent_directories(const std::string &file);
 /* Whether `target` can be written: its directory exists and it is not a
    directory, FIFO or read-only file. */
 bool check_target(const std::string &target, std::string &error);
 bool is_directory(const std::string &path);
 std::string directory_of(const std::string &path);
 std::string base_name(const std::string &path);
+/* The file a path names, as one string for comparisons: resolved by the
+   file system (symbolic links, "..") as far as the path exists, the rest
+   as text. */
+std::string path_identity(const std::string &path);
 /* Loads any supported file (the format from the extension). */
 std::unique_ptr<MeshFile> load_file(const std::string &path, std::string &error);
+
+/* What one run of the tool writes: the temporary directories in use
+   (removed when the run is interrupted) and every file moved into place,
+   so that two inputs of a batch never write the same file. */
+class Ledger {
+public:
+    /* false once the run is stopping: the caller makes no temporary */
+    bool add_temporary(const std::string &directory);
+    void remove_temporary(const std::string &directory);
+    /* Removes every temporary; from now on nothing is reserved or committed. */
+    void stop();
+
+private:
+    friend class OutputSet;
+    /* Claims the files for `owner` (call with `mutex` held); false and an
+       error naming the first file another owner wrote. */
+    bool claim(const std::vector<std::string> &files, const std::string &owner, std::string &error);
+    std::mutex mutex;
+    bool stopped = false;
+    std::set<std::string> temporaries;
+    std::map<std::string, std::string> owners; /* resolved path -> the input it was written for */
+};
 
 /* Outputs written all or nothing: each target is written into a new
    temporary directory beside it, and only when every output of the set
    was written are the files moved into place. */
 class OutputSet {
 public:
+    OutputSet(Ledger &run, const std::string &input) : ledger(run), owner(input) {}
     ~OutputSet() { discard(); }
     /* The path to write the target's contents to (inside the temporary
        directory, under the target's own name); "" and an error when the
@@ -84,6 +118,8 @@ private:
     struct Item {
         std::string target, directory;
     };
+    Ledger &ledger;
+    std::string owner;
     std::vector<Item> items;
 };
 
@@ -105,7 +141,7 @@ struct Job {
 };
 
 /* Runs one job: load, repair, write all or nothing. */
-void run_job(Job &job, const Settings &settings);
+void run_job(Job &job, const Settings &settings, Ledger &ledger);
 
 /* ---- reports (report.cpp) ---- */
 
@@ -117,8 +153,13 @@ std::string summary_line(const Job &job, const Settings &settings);
 bool something_wrong(const Job &job);
 /* The job as one JSON object (README: "The --json report"). */
 std::string json_report(const Job &job, const Settings &settings);
-/* Escapes a string for JSON, quotes included. */
+/* Escapes a string for JSON, quotes included; bytes that are not UTF-8
+   become U+FFFD, so the document is valid for a strict parser. */
 std::string json_string(const std::string &text);
+bool valid_utf8(const std::string &text);
+/* "name":"path" and, when the path is not UTF-8, "name_bytes": its bytes
+   percent-escaped. */
+std::string json_path(const std::string &name, const std::string &path);
 
 } // namespace tool
 
