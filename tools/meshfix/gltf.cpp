@@ -14,6 +14,7 @@
 #include "text.h"
 
 #ifndef MESHFIX_TOOL_NO_GLTF
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 #endif
 
@@ -22,15 +23,16 @@
 #include <cstring>
 #include <map>
 #include <set>
+#include <sstream>
 #include <sys/stat.h>
 
 namespace tool {
 
 bool write_bytes(const std::string &path, const std::string &bytes, std::string &error);
+bool make_parent_directories(const std::string &file);
 bool read_file(const std::string &path, std::string &data, std::string &error);
 std::string directory_of(const std::string &path);
 std::string base_name(const std::string &path);
-bool is_directory(const std::string &path);
 
 #ifdef MESHFIX_TOOL_NO_GLTF
 std::unique_ptr<MeshFile> load_gltf(const std::string &, std::string &error)
@@ -66,7 +68,6 @@ public:
     void review(size_t unit, const Changes &changes) override;
     void apply(size_t unit, const Changes &changes) override;
     bool write(const std::string &path, const std::string &target, std::string &error) override;
-    std::vector<std::string> companions() const override;
     std::vector<std::string> notes() const override;
     std::string json_members() const override;
 
@@ -585,17 +586,49 @@ int add_index_accessor(tinygltf::Model &m, const std::vector<uint32_t> &values, 
     return (int)m.accessors.size() - 1;
 }
 
-/* Whether another accessor reads any byte of this one's. */
+/* The bytes [begin, end) of a buffer that an accessor's elements span. */
+struct ByteRange {
+    int buffer = -1;
+    size_t begin = 0, end = 0;
+};
+
+ByteRange accessor_bytes(const tinygltf::Model &m, const tinygltf::Accessor &a)
+{
+    ByteRange r;
+    if (a.bufferView < 0 || (size_t)a.bufferView >= m.bufferViews.size() || a.count == 0)
+        return r;
+    const tinygltf::BufferView &v = m.bufferViews[(size_t)a.bufferView];
+    size_t size = component_size(a.componentType) * (size_t)std::max(components(a.type), 1);
+    size_t stride = v.byteStride != 0 ? v.byteStride : size;
+    r.buffer = v.buffer;
+    r.begin = v.byteOffset + a.byteOffset;
+    r.end = r.begin + (a.count - 1) * stride + size; /* within the buffer: view_range checked it */
+    return r;
+}
+
+bool overlap(const ByteRange &a, int buffer, size_t begin, size_t end)
+{
+    return a.buffer == buffer && a.buffer >= 0 && begin < a.end && a.begin < end;
+}
+
+/* Whether anything else in the file can see the bytes of this accessor:
+   another accessor over them (in its bufferView or another), or another
+   bufferView over them (an image, a sparse block, an extension's data).
+   Rewriting them in place would change that too. */
 bool aliased(const tinygltf::Model &m, int accessor)
 {
-    const tinygltf::Accessor &a = m.accessors[(size_t)accessor];
-    size_t begin = a.byteOffset, end = begin + a.count * component_size(a.componentType);
+    ByteRange mine = accessor_bytes(m, m.accessors[(size_t)accessor]);
+    if (mine.buffer < 0)
+        return true;
     for (size_t i = 0; i < m.accessors.size(); ++i) {
-        const tinygltf::Accessor &b = m.accessors[i];
-        if ((int)i == accessor || b.bufferView != a.bufferView)
-            continue;
-        size_t b_begin = b.byteOffset, b_end = b_begin + b.count * component_size(b.componentType) * (size_t)std::max(components(b.type), 1);
-        if (b_begin < end && begin < b_end)
+        ByteRange other = accessor_bytes(m, m.accessors[i]);
+        if ((int)i != accessor && overlap(mine, other.buffer, other.begin, other.end))
+            return true;
+    }
+    int own = m.accessors[(size_t)accessor].bufferView;
+    for (size_t i = 0; i < m.bufferViews.size(); ++i) {
+        const tinygltf::BufferView &v = m.bufferViews[i];
+        if ((int)i != own && overlap(mine, v.buffer, v.byteOffset, v.byteOffset + v.byteLength))
             return true;
     }
     return false;
@@ -722,46 +755,179 @@ void GltfFile::review(size_t unit, const Changes &changes)
     }
 }
 
-std::vector<std::string> GltfFile::companions() const
-{
-    std::vector<std::string> files;
-    for (const tinygltf::Buffer &b : model.buffers)
-        if (!b.uri.empty() && !data_uri(b.uri))
-            files.push_back(b.uri);
-    for (const tinygltf::Image &i : model.images)
-        if (!i.uri.empty() && !data_uri(i.uri))
-            files.push_back(i.uri);
-    return files;
-}
-
 namespace {
 
-void mkdir_one(const std::string &directory) { mkdir(directory.c_str(), 0777); }
+/* ---- the files beside a .gltf ---- */
 
-/* The file a relative URI names: %XX escapes decoded ("a%20b.bin"). */
-std::string file_of(const std::string &uri)
+/* The relative path a URI names (RFC 3986: %XX decoded, nothing else), or
+   false when it is not one that stays in the glTF's directory: absolute,
+   with a scheme or a drive, a ".." segment (also when written %2e%2e), a
+   backslash, a NUL, or a broken escape. Decided on the decoded path, so
+   no encoding gets around it. */
+bool companion_path(const std::string &uri, std::string &path)
 {
-    std::string out;
+    auto hex = [](char c) { return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1; };
+    path.clear();
     for (size_t i = 0; i < uri.size(); ++i) {
-        int hi, lo;
-        auto hex = [](char c) { return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1; };
-        if (uri[i] == '%' && i + 2 < uri.size() && (hi = hex(uri[i + 1])) >= 0 && (lo = hex(uri[i + 2])) >= 0) {
-            out += (char)(hi * 16 + lo);
-            i += 2;
-        } else {
-            out += uri[i];
+        if (uri[i] != '%') {
+            path += uri[i];
+            continue;
         }
+        if (i + 2 >= uri.size() || hex(uri[i + 1]) < 0 || hex(uri[i + 2]) < 0)
+            return false;
+        path += (char)(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+        i += 2;
+    }
+    if (path.empty() || path[0] == '/' || path.find('\0') != std::string::npos || path.find('\\') != std::string::npos ||
+        path.find(':') != std::string::npos)
+        return false;
+    for (size_t at = 0; at <= path.size();) {
+        size_t slash = std::min(path.find('/', at), path.size());
+        if (path.compare(at, slash - at, "..") == 0 && slash - at == 2)
+            return false;
+        at = slash + 1;
+    }
+    return true;
+}
+
+/* tinygltf's file system, narrowed to what the glTF may read: regular
+   files inside its own directory (no FIFO to block on, no device, no
+   fallback to the current directory), each opened without blocking. */
+struct Companions {
+    std::string base;                  /* the .gltf's directory, as given to tinygltf */
+    std::set<std::string> read;        /* relative paths tinygltf read */
+    std::string refused;               /* the first path refused, for the message */
+
+    /* The path relative to `base`, or "" when it is not below it. */
+    std::string relative(const std::string &path) const
+    {
+        std::string prefix = base.empty() || base.back() == '/' ? base : base + "/";
+        return path.compare(0, prefix.size(), prefix) == 0 ? path.substr(prefix.size()) : "";
+    }
+    /* Whether tinygltf may read `path`. A path outside `base` is its
+       fallback to the current directory: not found, whatever is there. */
+    bool allowed(const std::string &path)
+    {
+        std::string rel = relative(path), decoded;
+        if (rel.empty())
+            return false;
+        struct stat st;
+        /* tinygltf hands over the URI decoded: it must be a safe path as it is */
+        bool safe = companion_path(rel, decoded) && decoded == rel;
+        if (safe && stat(path.c_str(), &st) != 0)
+            return false; /* missing: tinygltf says so */
+        if (!safe || !S_ISREG(st.st_mode)) {
+            if (refused.empty())
+                refused = rel + (safe ? "', not a regular file" : "', outside its directory");
+            return false;
+        }
+        return true;
+    }
+};
+
+bool companion_exists(const std::string &path, void *user) { return ((Companions *)user)->allowed(path); }
+
+std::string companion_expand(const std::string &path, void *) { return path; }
+
+bool companion_read(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *user)
+{
+    Companions &c = *(Companions *)user;
+    std::string data, error;
+    if (!c.allowed(path) || !read_file(path, data, error)) {
+        if (err)
+            *err = error.empty() ? "not a regular file inside the glTF's directory" : error;
+        return false;
+    }
+    out->assign(data.begin(), data.end());
+    c.read.insert(c.relative(path));
+    return true;
+}
+
+bool companion_write(std::string *err, const std::string &, const std::vector<unsigned char> &, void *)
+{
+    if (err)
+        *err = "the tool writes glTF files itself";
+    return false;
+}
+
+/* The deepest nesting of [ and { in JSON text (strings skipped): refused
+   above a limit before tinygltf parses it, as its parser recurses. */
+size_t json_depth(const char *text, size_t size)
+{
+    size_t depth = 0, deepest = 0;
+    bool in_string = false;
+    for (size_t i = 0; i < size; ++i) {
+        char c = text[i];
+        if (in_string) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+const size_t json_depth_limit = 128;
+
+/* The JSON text of a .gltf, or of a .glb's first chunk (the header read as
+   far as it is there; tinygltf checks the rest). */
+void json_text(const std::string &raw, bool binary, const char **text, size_t *size)
+{
+    *text = raw.data();
+    *size = raw.size();
+    if (!binary || raw.size() < 20)
+        return;
+    uint32_t length = (uint32_t)(unsigned char)raw[12] | (uint32_t)(unsigned char)raw[13] << 8 |
+                      (uint32_t)(unsigned char)raw[14] << 16 | (uint32_t)(unsigned char)raw[15] << 24;
+    *text = raw.data() + 20;
+    *size = std::min<size_t>(length, raw.size() - 20);
+}
+
+/* The file a companion goes to beside the output: `relative` under the
+   output's directory, its directories made inside it. */
+bool write_companion(const std::string &out_dir, const std::string &relative, const std::vector<unsigned char> &bytes,
+                     std::string &error)
+{
+    std::string to = out_dir + "/" + relative;
+    if (!make_parent_directories(to)) {
+        error = "cannot make the directory of '" + to + "'";
+        return false;
+    }
+    return write_bytes(to, std::string(bytes.begin(), bytes.end()), error);
+}
+
+/* A GLB container of the JSON and the BIN chunk (spec: chunks padded to 4
+   bytes, JSON with spaces, BIN with zeros). */
+std::string glb_bytes(const std::string &json, const std::vector<unsigned char> &bin, bool with_bin)
+{
+    auto put32 = [](std::string &s, uint32_t v) {
+        for (int k = 0; k < 4; ++k)
+            s += (char)(v >> (8 * k) & 0xFF);
+    };
+    std::string j = json, out = "glTF";
+    while (j.size() % 4 != 0)
+        j += ' ';
+    size_t bin_padded = (bin.size() + 3) / 4 * 4;
+    put32(out, 2);
+    put32(out, (uint32_t)(12 + 8 + j.size() + (with_bin ? 8 + bin_padded : 0)));
+    put32(out, (uint32_t)j.size());
+    put32(out, 0x4E4F534Au);
+    out += j;
+    if (with_bin) {
+        put32(out, (uint32_t)bin_padded);
+        put32(out, 0x004E4942u);
+        out.append((const char *)bin.data(), bin.size());
+        out.append(bin_padded - bin.size(), '\0');
     }
     return out;
 }
-
-bool safe_relative(const std::string &uri)
-{
-    return !uri.empty() && uri[0] != '/' && uri.find("..") == std::string::npos && uri.find(':') == std::string::npos &&
-           uri.find('\\') == std::string::npos;
-}
-
-std::string out_dir_of_target(const std::string &target) { return directory_of(target); }
 
 bool same_directory(const std::string &a, const std::string &b)
 {
@@ -769,42 +935,38 @@ bool same_directory(const std::string &a, const std::string &b)
     return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
-bool copy_file(const std::string &from, const std::string &to, std::string &error)
-{
-    std::string data;
-    if (!read_file(from, data, error))
-        return false;
-    for (size_t slash = to.find('/', 1); slash != std::string::npos; slash = to.find('/', slash + 1))
-        mkdir_one(to.substr(0, slash));
-    return write_bytes(to, data, error);
-}
-
 } // namespace
 
 bool GltfFile::write(const std::string &out, const std::string &target, std::string &error)
 {
-    std::string in_dir = directory_of(path), out_dir = directory_of(out);
+    std::string out_dir = directory_of(out);
     bool to_binary = target.size() >= 4 && (target.compare(target.size() - 4, 4, ".glb") == 0 ||
                                             target.compare(target.size() - 4, 4, ".GLB") == 0);
-    for (const std::string &uri : companions())
-        if (!safe_relative(uri)) {
-            error = path + ": refers to '" + uri + "' outside its directory: not written";
+    /* images are never rewritten: their bytes, as read, go beside the output */
+    for (const tinygltf::Image &i : model.images) {
+        std::string relative;
+        if (i.uri.empty() || data_uri(i.uri))
+            continue;
+        if (!companion_path(i.uri, relative) || i.image.empty()) {
+            error = path + ": image '" + i.uri + "' could not be read beside it: not written";
             return false;
         }
-    /* images are never rewritten: copy the external ones beside the output */
-    for (const tinygltf::Image &i : model.images)
-        if (!i.uri.empty() && !data_uri(i.uri) && !copy_file(in_dir + "/" + file_of(i.uri), out_dir + "/" + file_of(i.uri), error))
+        if (!write_companion(out_dir, relative, i.image, error))
             return false;
+    }
     if (!changed && to_binary == binary) {
-        for (const tinygltf::Buffer &b : model.buffers)
-            if (!b.uri.empty() && !data_uri(b.uri) && !copy_file(in_dir + "/" + file_of(b.uri), out_dir + "/" + file_of(b.uri), error))
+        for (const tinygltf::Buffer &b : model.buffers) {
+            std::string relative;
+            if (!b.uri.empty() && !data_uri(b.uri) &&
+                (!companion_path(b.uri, relative) || !write_companion(out_dir, relative, b.data, error)))
                 return false;
+        }
         return write_bytes(out, raw, error);
     }
     tinygltf::Model copy = model;
     /* a new name beside the input: its changed buffers must not overwrite
        the input's */
-    if (changed && same_directory(in_dir, out_dir_of_target(target)) && base_name(target) != base_name(path)) {
+    if (changed && same_directory(directory_of(path), directory_of(target)) && base_name(target) != base_name(path)) {
         std::string stem = base_name(target).substr(0, base_name(target).rfind('.'));
         for (size_t i = 0; i < copy.buffers.size(); ++i)
             if (!copy.buffers[i].uri.empty() && !data_uri(copy.buffers[i].uri))
@@ -812,28 +974,52 @@ bool GltfFile::write(const std::string &out, const std::string &target, std::str
     }
     if (to_binary && !copy.buffers.empty() && !data_uri(copy.buffers[0].uri))
         copy.buffers[0].uri.clear(); /* the first buffer becomes the GLB's BIN chunk */
-    bool embed = true;
-    for (const tinygltf::Buffer &b : copy.buffers)
-        embed &= data_uri(b.uri);
-    for (const tinygltf::Buffer &b : copy.buffers)
-        if (!b.uri.empty() && !data_uri(b.uri))
-            for (size_t slash = b.uri.find('/'); slash != std::string::npos; slash = b.uri.find('/', slash + 1))
-                mkdir_one(out_dir + "/" + b.uri.substr(0, slash));
+    /* The document is serialized to memory with every buffer's bytes taken
+       out (written here, through the checked writer, then the URIs and
+       lengths put back), so tinygltf's unchecked file writers are never
+       used: a full disk fails the run instead of leaving a short file. */
+    std::vector<std::vector<unsigned char>> bytes(copy.buffers.size());
+    std::vector<unsigned char> bin;
+    bool with_bin = false;
+    for (size_t i = 0; i < copy.buffers.size(); ++i) {
+        tinygltf::Buffer &b = copy.buffers[i];
+        if (to_binary && i == 0 && b.uri.empty()) {
+            bin.swap(b.data);
+            with_bin = true;
+        } else if (!b.uri.empty() && !data_uri(b.uri)) {
+            std::string relative;
+            if (!companion_path(b.uri, relative)) {
+                error = path + ": buffer '" + b.uri + "' is not a file beside it: not written";
+                return false;
+            }
+            bytes[i].swap(b.data);
+            if (!write_companion(out_dir, relative, bytes[i], error))
+                return false;
+        }
+    }
     tinygltf::TinyGLTF writer;
     writer.SetImageWriter(write_image_uri, nullptr);
-    if (!writer.WriteGltfSceneToFile(&copy, out, false, embed && !to_binary, true, to_binary)) {
-        error = "cannot write '" + target + "'";
+    std::ostringstream stream;
+    if (!writer.WriteGltfSceneToStream(&copy, stream, !to_binary, false)) {
+        error = "cannot serialize '" + target + "'";
         return false;
     }
-    /* tinygltf writes a buffer under its URI as it is: give it the name
-       the URI means ("a%20b.bin" is the file "a b.bin") */
-    for (const tinygltf::Buffer &b : copy.buffers)
-        if (!b.uri.empty() && !data_uri(b.uri) && file_of(b.uri) != b.uri &&
-            std::rename((out_dir + "/" + b.uri).c_str(), (out_dir + "/" + file_of(b.uri)).c_str()) != 0) {
-            error = "cannot write '" + file_of(b.uri) + "' beside '" + target + "'";
-            return false;
+    nlohmann::json document = nlohmann::json::parse(stream.str(), nullptr, false);
+    if (document.is_discarded() || (!copy.buffers.empty() && !document["buffers"].is_array())) {
+        error = "cannot serialize '" + target + "'";
+        return false;
+    }
+    for (size_t i = 0; i < copy.buffers.size(); ++i) {
+        nlohmann::json &b = document["buffers"][i];
+        if (with_bin && i == 0) {
+            b.erase("uri");
+            b["byteLength"] = bin.size();
+        } else if (!copy.buffers[i].uri.empty() && !data_uri(copy.buffers[i].uri)) {
+            b["uri"] = copy.buffers[i].uri;
+            b["byteLength"] = bytes[i].size();
         }
-    return true;
+    }
+    return write_bytes(out, to_binary ? glb_bytes(document.dump(), bin, with_bin) : document.dump(2) + "\n", error);
 }
 
 std::vector<std::string> GltfFile::notes() const
@@ -886,13 +1072,27 @@ std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error)
     if (!read_file(path, file->raw, error))
         return nullptr;
     file->binary = file->raw.compare(0, 4, "glTF") == 0;
+    const char *json;
+    size_t json_size;
+    json_text(file->raw, file->binary, &json, &json_size);
+    if (json_depth(json, json_size) > json_depth_limit) {
+        error = "its JSON nests deeper than " + std::to_string(json_depth_limit) + " levels: refused";
+        return nullptr;
+    }
+    Companions companions;
+    companions.base = directory_of(path);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keep_image_bytes, nullptr);
+    loader.SetFsCallbacks({companion_exists, companion_expand, companion_read, companion_write, &companions});
     std::string err, warn;
     bool ok = file->binary ? loader.LoadBinaryFromMemory(&file->model, &err, &warn, (const unsigned char *)file->raw.data(),
-                                                         (unsigned)file->raw.size(), directory_of(path))
+                                                         (unsigned)file->raw.size(), companions.base)
                            : loader.LoadASCIIFromString(&file->model, &err, &warn, file->raw.data(),
-                                                        (unsigned)file->raw.size(), directory_of(path));
+                                                        (unsigned)file->raw.size(), companions.base);
+    if (!companions.refused.empty()) {
+        error = "refers to '" + companions.refused + ": refused";
+        return nullptr;
+    }
     if (!ok) {
         /* tinygltf refuses most compressed files itself (their accessors
            have no bufferView): say why, from the extension's name */
@@ -904,6 +1104,22 @@ std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error)
         size_t end = err.find('\n');
         error = "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf refused it") : err.substr(0, end));
         return nullptr;
+    }
+    /* every external URI must name the file tinygltf read for it */
+    std::vector<std::string> uris;
+    for (const tinygltf::Buffer &b : file->model.buffers)
+        uris.push_back(b.uri);
+    for (const tinygltf::Image &i : file->model.images)
+        if (!i.image.empty())
+            uris.push_back(i.uri);
+    for (const std::string &uri : uris) {
+        std::string relative;
+        if (uri.empty() || data_uri(uri))
+            continue;
+        if (!companion_path(uri, relative) || !companions.read.count(relative)) {
+            error = "refers to '" + uri + "', which is not a file beside it: refused";
+            return nullptr;
+        }
     }
     std::string compression = compression_of(file->model);
     if (!compression.empty()) {

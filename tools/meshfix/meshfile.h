@@ -70,9 +70,6 @@ public:
        format); `target` is the final name, for formats that write files
        beside it (glTF buffers and images go to the directory of `path`). */
     virtual bool write(const std::string &path, const std::string &target, std::string &error) = 0;
-    /* Files other than the main one that the output needs beside it
-       (glTF buffers and images), relative to the main file's directory. */
-    virtual std::vector<std::string> companions() const { return {}; }
     /* Lines for the report that only this format has (glTF: mirrored
        nodes, double-sided materials), and the same as JSON members. */
     virtual std::vector<std::string> notes() const { return {}; }
