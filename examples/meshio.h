@@ -163,17 +163,24 @@ static void mio_skip_line(mio_reader *r)
         r->at++;
 }
 
-/* Copies the next whitespace-delimited token on this line; 0 at line end. */
+/* Copies the next whitespace-delimited token on this line; 0 at line end.
+   A token with a NUL byte in it, or too long for `out`, is copied as ""
+   (it is there, but no keyword or number): reading a prefix of it would
+   make "endloop\0x" an endloop, or a long number another number. */
 static int mio_token(mio_reader *r, char *out, size_t out_size)
 {
     size_t n = 0;
+    int usable = 1;
     mio_skip_space(r);
     while (r->at < r->end && !isspace((unsigned char)*r->at)) {
-        if (n + 1 < out_size)
-            out[n++] = *r->at;
+        if (n + 1 < out_size && *r->at != 0)
+            out[n] = *r->at;
+        else
+            usable = 0;
+        n++;
         r->at++;
     }
-    out[n] = 0;
+    out[usable ? n : 0] = 0;
     return n > 0;
 }
 

@@ -29,12 +29,22 @@ public:
     std::vector<Edit> edits;
 };
 
-/* The tokens of the line starting at `at`, up to a '#' comment; `at` moves
-   past the line. */
-std::vector<Span> line_tokens(const std::string &data, size_t &at)
+/* A backslash that ends a line joins the next one to it (the OBJ spec's
+   continuation): its length with the line break, or 0. */
+size_t continuation(const std::string &data, size_t at)
+{
+    if (data[at] != '\\')
+        return 0;
+    size_t next = at + 1 < data.size() && data[at + 1] == '\r' ? at + 2 : at + 1;
+    return next >= data.size() ? next - at : data[next] == '\n' ? next + 1 - at : 0;
+}
+
+/* The tokens of the logical line starting at `at`, up to a '#' comment;
+   `at` moves past it and `lines` counts the line breaks it crossed. */
+std::vector<Span> line_tokens(const std::string &data, size_t &at, size_t &lines)
 {
     std::vector<Span> tokens;
-    size_t n = data.size();
+    size_t n = data.size(), joined;
     while (at < n && data[at] != '\n') {
         char c = data[at];
         if (c == '#') {
@@ -42,17 +52,24 @@ std::vector<Span> line_tokens(const std::string &data, size_t &at)
                 ++at;
             break;
         }
+        if ((joined = continuation(data, at)) != 0) {
+            at += joined;
+            lines += data[at - 1] == '\n';
+            continue;
+        }
         if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
             ++at;
             continue;
         }
         size_t begin = at;
-        while (at < n && !is_space(data[at]) && data[at] != '#')
+        while (at < n && !is_space(data[at]) && data[at] != '#' && continuation(data, at) == 0)
             ++at;
         tokens.push_back({begin, at});
     }
-    if (at < n)
+    if (at < n) {
         ++at;
+        ++lines;
+    }
     return tokens;
 }
 
@@ -127,9 +144,10 @@ struct ObjReader {
     {
         size_t at = 0;
         file.face_first.push_back(0);
+        size_t lines = 0;
         while (at < file.data.size()) {
-            ++line;
-            std::vector<Span> tokens = line_tokens(file.data, at);
+            line = lines + 1; /* messages name the line where the logical line starts */
+            std::vector<Span> tokens = line_tokens(file.data, at, lines);
             if (tokens.empty())
                 continue;
             std::string key = file.data.substr(tokens[0].begin, tokens[0].end - tokens[0].begin);

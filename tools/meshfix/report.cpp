@@ -138,18 +138,74 @@ size_t total(const Job &job, size_t UnitResult::*field)
 
 } // namespace
 
+namespace {
+
+/* The length of the well-formed UTF-8 sequence at text[i] (overlong forms,
+   surrogates and code points beyond U+10FFFF are not), or 0. */
+size_t utf8_length(const std::string &text, size_t i)
+{
+    unsigned char c = (unsigned char)text[i];
+    size_t n = c < 0x80 ? 1 : (c & 0xE0) == 0xC0 ? 2 : (c & 0xF0) == 0xE0 ? 3 : (c & 0xF8) == 0xF0 ? 4 : 0;
+    if (n == 0 || i + n > text.size())
+        return 0;
+    unsigned long code = n == 1 ? c : c & (0x7Fu >> n);
+    for (size_t k = 1; k < n; ++k) {
+        unsigned char d = (unsigned char)text[i + k];
+        if ((d & 0xC0) != 0x80)
+            return 0;
+        code = code << 6 | (d & 0x3Fu);
+    }
+    static const unsigned long least[5] = {0, 0, 0x80, 0x800, 0x10000};
+    if (code < least[n] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF))
+        return 0;
+    return n;
+}
+
+/* A path's exact bytes, percent-escaped: what a script must open when the
+   path is not UTF-8 (its JSON string has U+FFFD for those bytes). */
+std::string percent_bytes(const std::string &path)
+{
+    std::string bytes;
+    for (unsigned char c : path)
+        bytes += c > 0x20 && c < 0x7F && c != '%' ? std::string(1, (char)c) : format("%%%02X", c);
+    return bytes;
+}
+
+} // namespace
+
+bool valid_utf8(const std::string &text)
+{
+    for (size_t i = 0, n; i < text.size(); i += n)
+        if ((n = utf8_length(text, i)) == 0)
+            return false;
+    return true;
+}
+
 std::string json_string(const std::string &text)
 {
     std::string s = "\"";
-    for (unsigned char c : text) {
-        if (c == '"' || c == '\\')
+    for (size_t i = 0, n; i < text.size(); i += n) {
+        unsigned char c = (unsigned char)text[i];
+        n = utf8_length(text, i);
+        if (n == 0) {
+            s += "\\ufffd"; /* a byte that is not UTF-8 (a path's raw bytes: see json_path) */
+            n = 1;
+        } else if (c == '"' || c == '\\') {
             s += '\\', s += (char)c;
-        else if (c < 0x20)
+        } else if (c < 0x20 || c == 0x7F) {
             s += format("\\u%04x", c);
-        else
-            s += (char)c;
+        } else {
+            s.append(text, i, n);
+        }
     }
     return s + "\"";
+}
+
+/* "name":"path", and "name_bytes":"..." when the path is not UTF-8. */
+std::string json_path(const std::string &name, const std::string &path)
+{
+    std::string s = "\"" + name + "\":" + json_string(path);
+    return valid_utf8(path) ? s : s + ",\"" + name + "_bytes\":" + json_string(percent_bytes(path));
 }
 
 bool something_wrong(const Job &job)
@@ -230,17 +286,27 @@ std::string text_report(const Job &job, const Settings &settings)
 
 std::string json_report(const Job &job, const Settings &settings)
 {
-    std::string s = "{\"input\":" + json_string(job.input);
-    s += ",\"output\":" + (job.output.empty() ? std::string("null") : json_string(job.output));
+    std::string s = "{" + json_path("input", job.input);
+    s += "," + (job.output.empty() ? std::string("\"output\":null") : json_path("output", job.output));
     s += ",\"format\":" + (job.file ? json_string(job.file->format()) : std::string("null"));
     s += format(",\"exit\":%d", job.exit);
     s += ",\"error\":" + (job.error.empty() ? std::string("null") : json_string(job.error));
     s += ",\"summary\":" + json_string(summary_line(job, settings));
     s += ",\"wrong\":" + std::string(job.exit == 0 || job.exit == 3 ? (something_wrong(job) ? "true" : "false") : "null");
     s += ",\"written\":[";
-    for (size_t i = 0; i < job.written.size(); ++i)
+    bool raw = false;
+    for (size_t i = 0; i < job.written.size(); ++i) {
         s += (i ? "," : "") + json_string(job.written[i]);
-    s += "],\"meshes\":[";
+        raw |= !valid_utf8(job.written[i]);
+    }
+    s += "]";
+    if (raw) {
+        s += ",\"written_bytes\":[";
+        for (size_t i = 0; i < job.written.size(); ++i)
+            s += (i ? "," : "") + json_string(percent_bytes(job.written[i]));
+        s += "]";
+    }
+    s += ",\"meshes\":[";
     for (size_t i = 0; i < job.results.size(); ++i)
         s += (i ? "," : "") + unit_json(job.file->units[i], job.results[i]);
     s += "]";

@@ -59,14 +59,25 @@ void negate_f32le(unsigned char *p)
         p[3] ^= 0x80u;
 }
 
+/* Words as examples/meshio.h reads them (that reader builds the mesh): a
+   '#' at the start of a word comments out the rest of its line, and a word
+   is compared whole (a NUL byte is part of it). */
 struct AsciiScanner {
     const std::string &data;
     size_t at = 0;
 
     bool word(Span &s)
     {
-        while (at < data.size() && is_space(data[at]))
-            ++at;
+        for (;;) {
+            while (at < data.size() && is_space(data[at]))
+                ++at;
+            if (at < data.size() && data[at] == '#') {
+                while (at < data.size() && data[at] != '\n')
+                    ++at;
+                continue;
+            }
+            break;
+        }
         s.begin = at;
         while (at < data.size() && !is_space(data[at]))
             ++at;
@@ -77,15 +88,21 @@ struct AsciiScanner {
     {
         return s.end - s.begin == std::strlen(w) && data.compare(s.begin, s.end - s.begin, w) == 0;
     }
+    float number(const Span &s) const
+    {
+        return std::strtof(data.substr(s.begin, s.end - s.begin).c_str(), nullptr);
+    }
 };
 
 /* Facet normals and vertex texts, facet by facet, as meshio reads them: a
-   facet ends at "endloop" after three vertices. */
-bool scan_ascii(StlFile &file, std::vector<float> &normals, std::string &error)
+   facet ends at "endloop" after three vertices. `corners` gets the x y z
+   this scanner reads for each corner, for the comparison with meshio's. */
+bool scan_ascii(StlFile &file, std::vector<float> &normals, std::vector<float> &corners, std::string &error)
 {
     AsciiScanner s{file.data};
     Span w, n[3];
     std::array<Span, 3> normal{}, vertices{};
+    float xyz[9];
     int count = 0;
     while (s.word(w)) {
         if (s.is(w, "normal")) {
@@ -101,21 +118,40 @@ bool scan_ascii(StlFile &file, std::vector<float> &normals, std::string &error)
                 error = "facet with more than 3 vertices";
                 return false;
             }
-            for (int k = 0; k < 3; ++k)
+            for (int k = 0; k < 3; ++k) {
                 s.word(n[k]);
+                xyz[3 * count + k] = s.number(n[k]);
+            }
             vertices[(size_t)count++] = {n[0].begin, n[2].end};
         } else if (s.is(w, "endloop")) {
             float f[3] = {0, 0, 0};
             for (int k = 0; k < 3; ++k)
                 if (normal[(size_t)k].end > normal[(size_t)k].begin)
-                    f[k] = std::strtof(file.data.substr(normal[(size_t)k].begin, normal[(size_t)k].end - normal[(size_t)k].begin).c_str(), nullptr);
+                    f[k] = s.number(normal[(size_t)k]);
             normals.insert(normals.end(), f, f + 3);
+            corners.insert(corners.end(), xyz, xyz + 9);
             file.normal_tokens.push_back(normal);
             file.vertex_text.push_back(vertices);
             normal = {};
             count = 0;
         }
     }
+    return true;
+}
+
+/* Whether meshio's triangles are the facets this scanner found, corner by
+   corner: the facets the tool edits must be the ones the library decided
+   on. (meshio joins corners at equal positions, -0 = +0.) */
+bool same_corners(const Unit &u, const std::vector<float> &corners)
+{
+    if (corners.size() != 3 * u.indices.size())
+        return false;
+    for (size_t c = 0; c < u.indices.size(); ++c)
+        for (int k = 0; k < 3; ++k) {
+            float mine = corners[3 * c + (size_t)k], theirs = (float)u.positions[3 * (size_t)u.indices[c] + (size_t)k];
+            if (!(mine == theirs || (mine != mine && theirs != theirs)))
+                return false;
+        }
     return true;
 }
 
@@ -174,12 +210,15 @@ std::unique_ptr<MeshFile> load_stl(const std::string &data, std::string &error)
     size_t facets = u.indices.size() / 3;
     /* meshio took the file as binary exactly when its size is 84 + 50 n */
     file->binary = data.size() >= 84 && data.size() == 84 + 50 * (size_t)read_u32le((const unsigned char *)&data[80]);
-    std::vector<float> normals;
+    std::vector<float> normals, corners;
     if (file->binary) {
         for (size_t f = 0; f < facets; ++f)
             for (int k = 0; k < 3; ++k)
                 normals.push_back(read_f32le((const unsigned char *)&data[84 + 50 * f + 4 * (size_t)k]));
-    } else if (!scan_ascii(*file, normals, error)) {
+    } else if (!scan_ascii(*file, normals, corners, error)) {
+        return nullptr;
+    } else if (!same_corners(u, corners)) {
+        error = "the ASCII STL's facets read two ways (comments or NUL bytes among them): not changed";
         return nullptr;
     }
     if (normals.size() != 3 * facets) {
