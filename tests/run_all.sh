@@ -130,6 +130,8 @@ check "meshfix CLI: unknown policy is a one-line error" sh -c "build/meshfix --p
 check "meshfix CLI: every format round-trips" sh -c "for f in obj off stl ply; do build/meshfix --quiet $out/demo.obj $out/rt.\$f && build/meshfix --inspect $out/rt.\$f | grep -q 'triangles 8064' || exit 1; done"
 
 suite "command-line tool: misuse, crafted and odd files" bash tests/test_cli.sh
+suite "command-line tool on hostile files and runs: glTF URIs, full disks, shared bytes, deep JSON, FIFOs, collisions, interrupts" \
+    bash tests/test_cli_hostile.sh
 suite "command-line tool on real files: lossless round trips, scrambled copies, glTF (validator), exit statuses, --json" \
     bash tests/test_cli_files.sh
 check "sdf_demo repairs its scene (exit 0: consistent, outward)" sh -c "build/sdf_demo $out/sdf.obj >/dev/null && build/meshfix --inspect $out/sdf.obj | grep -q 'inconsistent 0'"

@@ -1,0 +1,202 @@
+#!/usr/bin/env python3
+"""hostile_gltf.py DIR: writes the crafted glTF files of tests/test_cli_hostile.sh.
+
+Each case is a directory under DIR. The meshes are cubes of 12 triangles
+with some faces turned, so a repair has something to write. Standard
+library only (json, struct).
+
+  traversal/NAME/a/b/in/scene.gltf  an image or buffer URI that climbs out
+      of in/ by an encoding of "..", or names an absolute path; the file it
+      aims at exists (traversal/NAME/secret.*), so only the tool's own
+      check stands between it and the file
+  alias/scene.gltf      two meshes whose index bufferViews are the same
+      bytes; mesh A needs 1 flip, mesh B (mirrored positions) 11
+  alias_offset/scene.gltf  the same, with the second view starting 6 bytes
+      (one triangle) in: the two overlap but are not equal
+  deep/scene.gltf, deep/scene.glb  20,000 nested arrays in asset.extras
+  fifo/scene.gltf       its buffer is fifo.bin (the test makes the FIFO)
+  fifo_image/scene.gltf an image uri naming fifo.png (a FIFO)
+  cwd/in/scene.gltf     its buffer cwd.bin is missing beside it, present in
+      cwd/ (the directory the test runs from)
+  big/in.glb, big/in.gltf + big/in.bin  about 240 KB, a repair to write
+  collide/a/s.gltf, collide/b/t.gltf   different files, both with a
+      buffer named scene.bin
+"""
+import base64
+import json
+import os
+import struct
+import sys
+
+CUBE = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+# outward (counter-clockwise seen from outside)
+CUBE_FACES = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4),
+              (1, 2, 6), (1, 6, 5), (2, 3, 7), (2, 7, 6), (3, 0, 4), (3, 4, 7)]
+
+
+def cube(turned, mirrored=False, offset=(0.0, 0.0, 0.0)):
+    """Positions and indices of a cube with the faces in `turned` reversed."""
+    positions = [((-x if mirrored else x) + offset[0], y + offset[1], z + offset[2]) for x, y, z in CUBE]
+    faces = [(a, c, b) if i in turned else (a, b, c) for i, (a, b, c) in enumerate(CUBE_FACES)]
+    return positions, faces
+
+
+def pack_positions(positions):
+    return b"".join(struct.pack("<3f", *p) for p in positions)
+
+
+def pack_indices(faces):
+    data = b"".join(struct.pack("<3H", *f) for f in faces)
+    return data + b"\0" * (-len(data) % 4)
+
+
+def document(meshes, buffer_uri, images=(), extras=None, index_views=None):
+    """A glTF document over one buffer: per mesh a POSITION view and an
+    index view (index_views, when given, overrides the index views as
+    (offset, length) pairs in the buffer). Returns (json dict, bin bytes)."""
+    data = b""
+    views, accessors, gltf_meshes = [], [], []
+    position_views, index_spans = [], []
+    for positions, faces in meshes:
+        p = pack_positions(positions)
+        position_views.append((len(data), len(p), positions))
+        data += p
+    for positions, faces in meshes:
+        i = pack_indices(faces)
+        index_spans.append((len(data), 6 * len(faces)))
+        data += i
+    if index_views is not None:
+        index_spans = index_views
+    for k, (offset, length, positions) in enumerate(position_views):
+        views.append({"buffer": 0, "byteOffset": offset, "byteLength": length, "target": 34962})
+        accessors.append({"bufferView": len(views) - 1, "componentType": 5126, "count": len(positions),
+                          "type": "VEC3", "min": [min(p[a] for p in positions) for a in range(3)],
+                          "max": [max(p[a] for p in positions) for a in range(3)]})
+    for k, (offset, length) in enumerate(index_spans):
+        views.append({"buffer": 0, "byteOffset": offset, "byteLength": length, "target": 34963})
+        accessors.append({"bufferView": len(views) - 1, "componentType": 5123, "count": length // 2,
+                          "type": "SCALAR"})
+    n = len(meshes)
+    for k in range(n):
+        gltf_meshes.append({"primitives": [{"attributes": {"POSITION": k}, "indices": n + k}]})
+    doc = {"asset": {"version": "2.0"}, "scene": 0,
+           "scenes": [{"nodes": list(range(n))}],
+           "nodes": [{"mesh": k, "translation": [2.0 * k, 0, 0]} for k in range(n)],
+           "meshes": gltf_meshes, "accessors": accessors, "bufferViews": views,
+           "buffers": [{"byteLength": len(data)}]}
+    if buffer_uri is not None:
+        doc["buffers"][0]["uri"] = buffer_uri
+    if images:
+        doc["images"] = [{"uri": u} for u in images]
+        doc["textures"] = [{"source": k} for k in range(len(images))]
+    if extras is not None:
+        doc["asset"]["extras"] = extras
+    return doc, data
+
+
+def write(path, text_or_bytes):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    mode = "wb" if isinstance(text_or_bytes, bytes) else "w"
+    with open(path, mode) as f:
+        f.write(text_or_bytes)
+
+
+def write_gltf(path, doc, data, bin_name=None):
+    """A .gltf with its buffer in bin_name beside it (the doc's uri)."""
+    write(path, json.dumps(doc, indent=1))
+    if bin_name is not None:
+        write(os.path.join(os.path.dirname(path), bin_name), data)
+
+
+def glb(json_text, data):
+    """A GLB of this JSON text and BIN chunk."""
+    j = json_text.encode()
+    j += b" " * (-len(j) % 4)
+    b = data + b"\0" * (-len(data) % 4)
+    body = struct.pack("<II", len(j), 0x4E4F534A) + j + struct.pack("<II", len(b), 0x004E4942) + b
+    return b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body
+
+
+def nest_extras(json_text, depth):
+    """The document with asset.extras `depth` arrays deep (as text: too
+    deep for Python's own json module)."""
+    return json_text.replace('"version": "2.0"', '"version": "2.0", "extras": ' + "[" * depth + "]" * depth, 1)
+
+
+PNG = bytes.fromhex("89504e470d0a1a0a0000000d4948445200000001000000010806000000"
+                    "1f15c4890000000d49444154789c6360000002000100e221bc330000000049454e44ae426082")
+
+TRAVERSALS = {
+    # image URIs: from a/b/in/, three levels up is traversal/NAME/
+    "percent_lower": ("image", "%2e%2e/%2e%2e/%2e%2e/secret.png"),
+    "percent_upper": ("image", "%2E%2E/%2E%2E/%2E%2E/secret.png"),
+    "percent_half": ("image", ".%2e/%2e./.%2E/secret.png"),
+    "percent_slashes": ("image", "%2e%2e%2f%2e%2e%2f%2e%2e%2fsecret.png"),
+    "down_then_up": ("image", "x/%2e%2e/%2e%2e/%2e%2e/%2e%2e/secret.png"),
+    "backslashes": ("image", "..%5c..%5c..%5csecret.png"),
+    "absolute_encoded": ("image", "%2F{secret}"),
+    "buffer_percent": ("buffer", "%2e%2e/%2e%2e/%2e%2e/secret.bin"),
+    "buffer_mixed": ("buffer", "./%2e./..%2F%2e%2e/secret.bin"),
+}
+
+
+def main():
+    root = sys.argv[1]
+    good, bad = cube({3}), cube({3}, mirrored=True)
+
+    for name, (kind, uri) in TRAVERSALS.items():
+        base = os.path.join(root, "traversal", name)
+        doc, data = document([good], "scene.bin" if kind == "image" else None)
+        secret_png = os.path.join(os.path.abspath(base), "secret.png")
+        uri = uri.replace("{secret}", secret_png.lstrip("/").replace("/", "%2F"))
+        if kind == "image":
+            doc["images"] = [{"uri": uri}]
+            write(os.path.join(base, "a/b/in/scene.bin"), data)
+        else:
+            doc["buffers"][0]["uri"] = uri
+        write(os.path.join(base, "a/b/in/scene.gltf"), json.dumps(doc, indent=1))
+        write(os.path.join(base, "secret.png"), PNG)
+        write(os.path.join(base, "secret.bin"), data)
+
+    # two meshes over the same index bytes: A right after 1 flip, B after 11
+    a, b = good, cube(set(range(12)) - {3}, mirrored=True)
+    a_doc, _ = document([a, b], "x.bin")
+    first = a_doc["bufferViews"][2]
+    for case, shift in (("alias", 0), ("alias_offset", 6)):
+        spans = [(first["byteOffset"], 72), (first["byteOffset"] + shift, 72 - shift)]
+        doc, data = document([a, (b[0], b[1][shift // 6:])], "scene.bin", index_views=spans)
+        # the bytes of mesh A's indices, which mesh B reads too
+        data = data[:first["byteOffset"]] + pack_indices(a[1]) + data[first["byteOffset"] + 72:]
+        write_gltf(os.path.join(root, case, "scene.gltf"), doc, data, "scene.bin")
+
+    doc, data = document([good], None)
+    doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+    write(os.path.join(root, "deep", "scene.gltf"), nest_extras(json.dumps(doc), 20000))
+    doc, data = document([good], None)
+    write(os.path.join(root, "deep", "scene.glb"), glb(nest_extras(json.dumps(doc), 20000), data))
+
+    doc, data = document([good], "fifo.bin")
+    write_gltf(os.path.join(root, "fifo", "scene.gltf"), doc, data)
+    doc, data = document([good], "scene.bin", images=["fifo.png"])
+    write_gltf(os.path.join(root, "fifo_image", "scene.gltf"), doc, data, "scene.bin")
+
+    doc, data = document([good], "cwd.bin")
+    write_gltf(os.path.join(root, "cwd", "in", "scene.gltf"), doc, data)
+    write(os.path.join(root, "cwd", "cwd.bin"), data)
+
+    # about 240 KB: 400 cubes, the first with a turned face
+    many = [cube({3} if k == 0 else set(), offset=(2.0 * (k % 10), 2.0 * (k // 10 % 10), 2.0 * (k // 100)))
+            for k in range(400)]
+    doc, data = document(many, None)
+    doc["nodes"] = [{"mesh": k} for k in range(len(many))]
+    write(os.path.join(root, "big", "in.glb"), glb(json.dumps(doc), data))
+    doc["buffers"][0]["uri"] = "in.bin"
+    write_gltf(os.path.join(root, "big", "in.gltf"), doc, data, "in.bin")
+
+    for sub, name, mesh in (("a", "s.gltf", good), ("b", "t.gltf", cube({5}))):
+        doc, data = document([mesh], "scene.bin")
+        write_gltf(os.path.join(root, "collide", sub, name), doc, data, "scene.bin")
+
+
+if __name__ == "__main__":
+    main()

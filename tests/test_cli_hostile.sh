@@ -1,0 +1,354 @@
+#!/usr/bin/env bash
+# build/meshfix on hostile files and hostile runs, as an asset pipeline meets
+# them (files from anyone, in place, in batches, in CI): glTF URIs that climb
+# out of their directory by any encoding, a disk that fills or fails while
+# the input is replaced, index bytes shared between meshes, JSON nested to
+# crash a recursive parser, FIFOs and the current directory as companions,
+# batch outputs that collide, ASCII STL read two ways, OBJ line
+# continuations, paths that are not UTF-8 in --json, interrupted runs.
+# The glTF files come from tests/cli/hostile_gltf.py; a disk that fails is
+# tests/cli/failing_io.c (LD_PRELOAD), and, as root, a small tmpfs.
+# Run from the repository root after `make build/meshfix build/demo_mesh`.
+# Prints "ok NAME", "FAIL NAME" or "SKIP NAME (why)", then "N passed, N failed".
+set -u
+cd "$(dirname "$0")/.." || exit 1
+CC=${CC:-cc}
+MESHFIX=${MESHFIX:-$PWD/build/meshfix}
+passed=0
+failed=0
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/meshfix_hostile.XXXXXX") || exit 1
+mounted=""
+cleanup() {
+    [ -z "$mounted" ] || umount "$mounted" 2>/dev/null
+    rm -rf "$tmp"
+}
+trap cleanup EXIT
+check_log="$tmp/last.log"
+. tests/check.sh
+skip() { echo "SKIP $1"; }
+
+for binary in build/meshfix build/demo_mesh; do
+    if [ ! -x "$binary" ]; then
+        echo "FAIL $binary is not built (make build/meshfix build/demo_mesh)"
+        echo "0 passed, 1 failed"
+        exit 1
+    fi
+done
+build/demo_mesh "$tmp/demo.obj" >/dev/null || exit 1
+/usr/bin/python3 tests/cli/hostile_gltf.py "$tmp/g" || { echo "FAIL hostile_gltf.py"; echo "0 passed, 1 failed"; exit 1; }
+$CC -shared -fPIC -o "$tmp/failing_io.so" tests/cli/failing_io.c -ldl || { echo "FAIL failing_io.c"; echo "0 passed, 1 failed"; exit 1; }
+
+# exit status `want`, one line on stderr matching `pattern`
+one_line_error() { # want pattern command...
+    local want=$1 pattern=$2 status
+    shift 2
+    "$@" >"$tmp/out.txt" 2>"$tmp/err.txt"
+    status=$?
+    cat "$tmp/err.txt"
+    [ "$status" -eq "$want" ] || { echo "exit status $status, expected $want"; return 1; }
+    [ "$(wc -l <"$tmp/err.txt")" -eq 1 ] || { echo "expected one line on stderr"; return 1; }
+    grep -qi -- "$pattern" "$tmp/err.txt"
+}
+
+no_temporaries() { # directory
+    local left
+    left=$(find "$1" -name '*.meshfix-*.tmp')
+    [ -z "$left" ] || { echo "left behind: $left"; return 1; }
+}
+
+# ---- 1. URIs that leave the glTF's directory ----
+
+# Each case aims at traversal/NAME/secret.*: three levels above a/b/in/. The
+# run must refuse (reading and writing), write nothing under out/, and leave
+# no copy of the secret anywhere.
+traversal() { # case
+    local base="$tmp/g/traversal/$1" found
+    mkdir -p "$base/out/x/y"
+    touch "$base/before"
+    one_line_error 1 "outside its directory" $MESHFIX "$base/a/b/in/scene.gltf" "$base/out/x/y/scene.gltf" || return 1
+    one_line_error 1 "outside its directory" $MESHFIX --inspect "$base/a/b/in/scene.gltf" || return 1
+    one_line_error 1 "outside its directory" $MESHFIX --json "$base/a/b/in/scene.gltf" -o "$base/out/batch" || return 1
+    found=$(find "$base" -newer "$base/before" ! -type d)
+    [ -z "$found" ] || { echo "written: $found"; return 1; }
+    [ "$(find "$base" -name 'secret.*' | wc -l)" -eq 2 ] || { find "$base" -name 'secret.*'; return 1; }
+}
+for case in $(ls "$tmp/g/traversal"); do
+    check "glTF URI climbing out of its directory ($case): refused, nothing read or written" traversal "$case"
+done
+
+literal_refused() {
+    local d="$tmp/literal"
+    mkdir -p "$d/in"
+    for uri in "../secret.bin" "/etc/hostname" "file:///etc/hostname" "sub/../../secret.bin"; do
+        sed "s|\"uri\": \"scene.bin\"|\"uri\": \"$uri\"|" "$tmp/g/alias/scene.gltf" >"$d/in/scene.gltf"
+        cp "$tmp/g/alias/scene.bin" "$d/secret.bin"
+        $MESHFIX --inspect "$d/in/scene.gltf" >/dev/null 2>&1 && { echo "'$uri' was read"; return 1; }
+    done
+    return 0
+}
+check "literal ../, absolute and file:// buffer URIs stay refused" literal_refused
+
+# ---- 2. a disk that fills up or fails while the input is replaced ----
+
+# In place: the input must come back byte for byte, exit 1, no temporary.
+in_place_fails() { # environment assignment, file, companion...
+    local setting=$1 file=$2 d="$tmp/fill" f
+    shift 2
+    rm -rf "$d" && mkdir -p "$d"
+    for f in "$file" "$@"; do cp "$tmp/g/big/$f" "$d/"; done
+    env "$setting" LD_PRELOAD="$tmp/failing_io.so" $MESHFIX "$d/$file" "$d/$file" >/dev/null 2>"$tmp/err.txt"
+    [ $? -eq 1 ] || { cat "$tmp/err.txt"; echo "exit status not 1"; return 1; }
+    for f in "$file" "$@"; do cmp "$d/$f" "$tmp/g/big/$f" || return 1; done
+    no_temporaries "$d"
+}
+check "disk full after 50 KB: meshfix in.glb in.glb keeps in.glb, exit 1" in_place_fails FAILING_IO_WRITE_LIMIT=50000 in.glb
+check "disk full after 50 KB: in.gltf with in.bin in place keeps both" in_place_fails FAILING_IO_WRITE_LIMIT=50000 in.gltf in.bin
+check "disk full after 100 KB (the .bin written, the .gltf not): both kept" in_place_fails FAILING_IO_WRITE_LIMIT=100000 in.gltf in.bin
+check "disk full at the first byte: in.gltf and in.bin kept" in_place_fails FAILING_IO_WRITE_LIMIT=0 in.gltf in.bin
+check "fsync fails (EIO): in.glb kept" in_place_fails FAILING_IO_FSYNC=eio in.glb
+
+other_formats_fail() {
+    local d="$tmp/fill2" f
+    rm -rf "$d" && mkdir -p "$d"
+    for f in obj ply stl off; do
+        $MESHFIX --quiet "$tmp/demo.obj" "$d/demo.$f" || return 1
+        cp "$d/demo.$f" "$d/expected.$f"
+        # scramble: a repair has to write
+        FAILING_IO_WRITE_LIMIT=4096 LD_PRELOAD="$tmp/failing_io.so" $MESHFIX --policy seed "$d/demo.$f" "$d/demo.$f" \
+            >/dev/null 2>&1
+        cmp "$d/demo.$f" "$d/expected.$f" || { echo "$f changed"; return 1; }
+    done
+    no_temporaries "$d"
+}
+check "disk full: OBJ, PLY, STL and OFF outputs in place are kept whole" other_formats_fail
+
+tmpfs_full() { # file companion...: on a tmpfs with about 68 KB left after the input
+    local d="$tmp/tmpfs" f size=0
+    mkdir -p "$d"
+    for f in "$@"; do size=$((size + $(stat -c %s "$tmp/g/big/$f"))); done
+    mount -t tmpfs -o size=$(((size + 68 * 1024 + 4095) / 4096 * 4096)) tmpfs "$d" || return 1
+    mounted=$d
+    for f in "$@"; do cp "$tmp/g/big/$f" "$d/" || return 1; done
+    $MESHFIX "$d/$1" "$d/$1" >"$tmp/out.txt" 2>"$tmp/err.txt"
+    local status=$?
+    for f in "$@"; do cmp "$d/$f" "$tmp/g/big/$f" || { umount "$d"; mounted=""; return 1; }; done
+    no_temporaries "$d" || { umount "$d"; mounted=""; return 1; }
+    umount "$d"
+    mounted=""
+    [ "$status" -eq 1 ] || { echo "exit status $status"; return 1; }
+    grep -q "No space left" "$tmp/err.txt"
+}
+if [ "$(id -u)" = 0 ] && mkdir -p "$tmp/probe" && mount -t tmpfs -o size=64k tmpfs "$tmp/probe" 2>/dev/null; then
+    umount "$tmp/probe"
+    check "a real full disk (tmpfs, 68 KB free): meshfix in.glb in.glb keeps it, exit 1" tmpfs_full in.glb
+    check "a real full disk (tmpfs, 68 KB free): in.gltf + in.bin in place kept" tmpfs_full in.gltf in.bin
+else
+    skip "the tmpfs checks of a full disk (they need root and mount; the LD_PRELOAD ones above ran)"
+fi
+
+# ---- 3. index bytes shared by two meshes ----
+
+# After the repair each mesh must need nothing more, read from the bytes as
+# written: a write over shared bytes would leave one of them wrong.
+aliased_views() { # case
+    local d="$tmp/g/$1"
+    $MESHFIX --json "$d/scene.gltf" "$d/out.gltf" >"$tmp/out.json" || return 1
+    grep -q '"index_accessors_cloned":[1-9]' "$tmp/out.json" || { echo "no accessor cloned"; return 1; }
+    $MESHFIX --inspect "$d/out.gltf" >"$tmp/out.txt" || return 1
+    [ "$(grep -c 'would flip 0 of' "$tmp/out.txt")" -eq 2 ] || { cat "$tmp/out.txt"; return 1; }
+    ! grep -q 'inside-out [1-9]' "$tmp/out.txt"
+}
+check "two index bufferViews over the same bytes: both meshes right after the repair" aliased_views alias
+check "two index bufferViews overlapping by all but one triangle: both right" aliased_views alias_offset
+
+# ---- 4. JSON nested deep ----
+
+check "a .gltf with 20,000 nested arrays: exit 1, one line, no crash" \
+    one_line_error 1 "nests deeper" timeout 20 $MESHFIX --inspect "$tmp/g/deep/scene.gltf"
+check "a .glb with 20,000 nested arrays in its JSON chunk: exit 1, no crash" \
+    one_line_error 1 "nests deeper" timeout 20 $MESHFIX --inspect "$tmp/g/deep/scene.glb"
+deep_in_batch() {
+    timeout 20 $MESHFIX --inspect "$tmp/g/deep/scene.gltf" "$tmp/demo.obj" "$tmp/g/deep/scene.glb" >"$tmp/out.txt" 2>&1
+    [ $? -eq 1 ] || return 1
+    grep -q "^$tmp/demo.obj: inconsistent" "$tmp/out.txt" || { cat "$tmp/out.txt"; return 1; }
+}
+check "deep JSON in a batch: the other files are still inspected" deep_in_batch
+
+# ---- 5. companions that are FIFOs, or only in the current directory ----
+
+mkfifo "$tmp/g/fifo/fifo.bin" "$tmp/g/fifo_image/fifo.png"
+check "a buffer URI naming a FIFO: exit 1 at once, also under --inspect (timeout 5 s)" \
+    one_line_error 1 "not a regular file" timeout 5 $MESHFIX --inspect "$tmp/g/fifo/scene.gltf"
+check "an image URI naming a FIFO: exit 1 at once (timeout 5 s)" \
+    one_line_error 1 "not a regular file" timeout 5 $MESHFIX "$tmp/g/fifo_image/scene.gltf" "$tmp/fifo_out.gltf"
+cwd_fallback() {
+    (cd "$tmp/g/cwd" && one_line_error 1 "not found" $MESHFIX --inspect in/scene.gltf)
+}
+check "a buffer missing beside the glTF is not taken from the current directory" cwd_fallback
+
+# ---- 6. batch outputs that collide ----
+
+collide_files() {
+    local d="$tmp/col"
+    mkdir -p "$d/a" "$d/b"
+    cp "$tmp/demo.obj" "$d/a/x.obj"
+    cp "$tmp/demo.obj" "$d/b/x.obj"
+    one_line_error 1 "both be written" $MESHFIX "$d/a/x.obj" "$d/b/x.obj" -o "$d/out" || return 1
+    [ ! -e "$d/out" ] || { ls -R "$d/out"; return 1; }
+    one_line_error 1 "both be written" $MESHFIX "$d/a" "$d/b" -o "$d/out" || return 1
+    [ ! -e "$d/out" ] || { ls -R "$d/out"; return 1; }
+    one_line_error 1 "both be written" $MESHFIX "$d/a/x.obj" "$d/a/../a/x.obj" -o "$d/out" || return 1
+    mkdir -p "$d/marks"
+    one_line_error 1 "both be written" $MESHFIX --inspect "$d/a/x.obj" "$d/b/x.obj" --mark "$d/marks" || return 1
+    [ -z "$(ls -A "$d/marks")" ]
+}
+check "two inputs named x.obj into one -o directory: refused before anything is written" collide_files
+
+output_is_input() {
+    local d="$tmp/col2"
+    mkdir -p "$d/marks"
+    cp "$tmp/demo.obj" "$d/x.obj"
+    $MESHFIX --quiet "$tmp/demo.obj" "$d/marks/x.obj.ply" || return 1
+    cp "$d/marks/x.obj.ply" "$d/expected.ply"
+    # x.obj's --mark file is marks/x.obj.ply, the second input
+    one_line_error 1 "is also an input" $MESHFIX --inspect "$d/x.obj" "$d/marks/x.obj.ply" --mark "$d/marks" || return 1
+    cmp "$d/marks/x.obj.ply" "$d/expected.ply"
+}
+check "an output that is another input of the batch: refused" output_is_input
+
+collide_companions() {
+    local d="$tmp/col3"
+    one_line_error 1 "scene.bin" $MESHFIX -j 1 --quiet "$tmp/g/collide/a/s.gltf" "$tmp/g/collide/b/t.gltf" -o "$d" ||
+        return 1
+    # the file that was written is whole: its own .gltf with its own .bin
+    $MESHFIX --inspect "$d/s.gltf" | grep -q 'would flip 0 of 12' || return 1
+    [ ! -e "$d/t.gltf" ]
+}
+check "two glTF files whose buffers are both scene.bin: the second fails, the first stays whole" collide_companions
+
+# ---- 7. ASCII STL read two ways ----
+
+# A cube whose facet 0 is turned, a "# endloop" comment line after it, and a
+# NUL byte after the last endloop: whatever is read, the facets edited must
+# be the ones the library decided on (or the file is refused).
+/usr/bin/python3 - "$tmp/two_ways.stl" <<'EOF'
+import sys
+v = [(0,0,0),(1,0,0),(1,1,0),(0,1,0),(0,0,1),(1,0,1),(1,1,1),(0,1,1)]
+f = [(0,2,1),(0,3,2),(4,5,6),(4,6,7),(0,1,5),(0,5,4),(1,2,6),(1,6,5),(2,3,7),(2,7,6),(3,0,4),(3,4,7)]
+f[5] = (0, 4, 5)  # turned: after the comment, so a reader one facet off edits another
+out = "solid cube\n"
+for i, t in enumerate(f):
+    out += "facet normal 0 0 0\n outer loop\n" + "".join(" vertex %d %d %d\n" % v[k] for k in t) + " endloop\nendfacet\n"
+    if i == 0:
+        out += "# endloop\n"
+out = out[:out.rfind("endloop") + 7] + "\0" + out[out.rfind("endloop") + 7:] + "endsolid cube\n"
+open(sys.argv[1], "w").write(out)
+EOF
+stl_two_ways() {
+    $MESHFIX "$tmp/two_ways.stl" "$tmp/two_ways_out.stl" >/dev/null 2>"$tmp/err.txt"
+    local status=$?
+    if [ "$status" -eq 1 ]; then
+        grep -q "read two ways" "$tmp/err.txt"
+        return
+    fi
+    [ "$status" -eq 0 ] || return 1
+    $MESHFIX --inspect "$tmp/two_ways_out.stl" >"$tmp/out.txt" || return 1
+    grep -q 'inconsistent 0' "$tmp/out.txt" && grep -q 'would flip 0 of' "$tmp/out.txt" || { cat "$tmp/out.txt"; return 1; }
+}
+check "ASCII STL with a '# endloop' comment and a NUL after the last endloop: the right facets edited" stl_two_ways
+stl_long_number() {
+    # a coordinate of 300 characters: both readers must see one number
+    local long
+    long="0.$(printf '0%.0s' $(seq 1 297))1"
+    sed "0,/vertex 1 0 0/s//vertex $long 0 0/" "$tmp/two_ways.stl" | tr -d '\000' >"$tmp/long.stl"
+    $MESHFIX "$tmp/long.stl" "$tmp/long_out.stl" >/dev/null 2>&1
+    local status=$?
+    [ "$status" -eq 1 ] && return 0
+    [ "$status" -eq 0 ] && $MESHFIX --inspect "$tmp/long_out.stl" | grep -q 'inconsistent 0'
+}
+check "ASCII STL with a 300-character coordinate: read one way, or refused" stl_long_number
+
+# ---- 8. OBJ line continuations ----
+
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 \\\n 4\nf 1 4 \\\r\n3\nf 2 \\\n4 \\\n3\n' >"$tmp/cont.obj"
+obj_continuations() {
+    $MESHFIX "$tmp/cont.obj" "$tmp/cont_out.obj" | tail -n 1 | grep -q "fixed 1 triangle" || return 1
+    # only the flipped face changed, its continuation kept
+    [ "$(tr '\n' '|' <"$tmp/cont_out.obj")" = "$(tr '\n' '|' <"$tmp/cont.obj" | sed 's/f 2 \\|4 \\|3/f 2 \\|3 \\|4/')" ] || {
+        od -c "$tmp/cont_out.obj" | tail -4; return 1; }
+    $MESHFIX "$tmp/cont_out.obj" "$tmp/cont_again.obj" | tail -n 1 | grep -q "clean" || return 1
+    cmp "$tmp/cont_out.obj" "$tmp/cont_again.obj"
+}
+check "OBJ '\\' line continuations: read, and kept byte for byte" obj_continuations
+
+# ---- 9. the library's refusals reach the user ----
+
+check "--policy normals on a file without normals: exit 2, the library's message" \
+    one_line_error 2 "needs options.evidence" $MESHFIX --policy normals "$tmp/demo.obj" "$tmp/normals_out.obj"
+
+# ---- 10. paths that are not UTF-8 in --json ----
+
+json_non_utf8() {
+    local name
+    name=$(printf '%s/caf\351_\377.obj' "$tmp")
+    cp "$tmp/demo.obj" "$name"
+    $MESHFIX --json --inspect "$name" >"$tmp/report.json" || return 1
+    /usr/bin/python3 - "$tmp/report.json" "$name" <<'EOF'
+import json, sys, urllib.parse
+raw = open(sys.argv[1], "rb").read()
+report = json.loads(raw.decode("utf-8"))  # strict: raises on a byte that is not UTF-8
+entry = report["files"][0]
+assert "\ufffd" in entry["input"], entry["input"]
+assert urllib.parse.unquote_to_bytes(entry["input_bytes"]) == sys.argv[2].encode("utf-8", "surrogateescape")
+EOF
+}
+check "--json with a path that is not UTF-8: valid JSON, the raw bytes percent-escaped" json_non_utf8
+
+# ---- 11. interrupted runs ----
+
+interrupted() { # signal, expected status
+    local d="$tmp/int_$1" pid status
+    mkdir -p "$d"
+    cp "$tmp/g/big/in.glb" "$d/in.glb"
+    FAILING_IO_FSYNC=sleep LD_PRELOAD="$tmp/failing_io.so" $MESHFIX "$d/in.glb" "$d/in.glb" >/dev/null 2>"$tmp/err.txt" &
+    pid=$!
+    for _ in $(seq 1 50); do
+        [ -n "$(find "$d" -name '*.meshfix-*.tmp')" ] && break
+        sleep 0.1
+    done
+    [ -n "$(find "$d" -name '*.meshfix-*.tmp')" ] || { echo "no temporary appeared"; kill $pid; return 1; }
+    kill -"$1" $pid
+    wait $pid
+    status=$?
+    [ "$status" -eq "$2" ] || { echo "exit status $status, expected $2"; return 1; }
+    cmp "$d/in.glb" "$tmp/g/big/in.glb" || return 1
+    no_temporaries "$d"
+}
+check "SIGINT while the output is being written: status 130, input kept, temporaries removed" interrupted INT 130
+check "SIGTERM while the output is being written: status 143, input kept, temporaries removed" interrupted TERM 143
+
+walk_skips_temporaries() {
+    local d="$tmp/walk"
+    mkdir -p "$d/in/.x.obj.meshfix-1-0.tmp" "$d/in/sub"
+    head -c 1000 "$tmp/demo.obj" >"$d/in/.x.obj.meshfix-1-0.tmp/x.obj"
+    cp "$tmp/demo.obj" "$d/in/sub/y.obj"
+    $MESHFIX --quiet "$d/in" -o "$d/out" || return 1
+    [ "$(find "$d/out" -type f | wc -l)" -eq 1 ] && [ -f "$d/out/sub/y.obj" ] || { find "$d/out"; return 1; }
+}
+check "a directory walk skips a temporary left by an earlier run (its name starts with a dot)" walk_skips_temporaries
+
+# ---- 12. relative output paths make no stray directory ----
+
+no_stray_directory() {
+    local d="$tmp/stray"
+    mkdir -p "$d/out/x/y"
+    (cd "$d" && $MESHFIX --quiet "$tmp/demo.obj" out/x/y/o.obj) || return 1
+    [ -f "$d/out/x/y/o.obj" ] || return 1
+    [ "$(ls -A "$d")" = out ] || { ls -A "$d"; return 1; }
+    (cd "$d" && $MESHFIX --quiet "$tmp/demo.obj" "$tmp/cont.obj" -o new/a/b) || return 1
+    [ "$(ls -A "$d")" = "$(printf 'new\nout')" ] || { ls -A "$d"; return 1; }
+}
+check "meshfix in.obj out/x/y/o.obj makes no directory 'o' (nor any other) in the current one" no_stray_directory
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
