@@ -67,22 +67,24 @@ int fail_usage(const std::string &message)
     return 1;
 }
 
+/* The library's policy names, but SDF (a file has no distance function). */
 bool parse_policy(const std::string &name, Settings &s)
 {
-    static const struct {
-        const char *name;
-        meshfix_policy policy;
-    } policies[] = {{"auto", MESHFIX_POLICY_AUTO},     {"seed", MESHFIX_POLICY_SEED},
-                    {"majority", MESHFIX_POLICY_MAJORITY}, {"outward", MESHFIX_POLICY_OUTWARD},
-                    {"visibility", MESHFIX_POLICY_VISIBILITY}, {"up", MESHFIX_POLICY_UP},
-                    {"normals", MESHFIX_POLICY_NORMALS}};
-    for (const auto &p : policies)
-        if (name == p.name) {
-            s.policy = p.policy;
-            s.policy_name = name;
-            return true;
-        }
-    return false;
+    meshfix_policy policy = meshfix_policy_from_string(name.c_str());
+    if (policy == MESHFIX_POLICY_COUNT || policy == MESHFIX_POLICY_SDF)
+        return false;
+    s.policy = policy;
+    s.policy_name = name;
+    return true;
+}
+
+std::string policy_names()
+{
+    std::string names;
+    for (int p = 0; p < (int)MESHFIX_POLICY_COUNT; ++p)
+        if (p != (int)MESHFIX_POLICY_SDF)
+            names += (names.empty() ? "" : ", ") + std::string(meshfix_policy_string((meshfix_policy)p));
+    return names;
 }
 
 bool parse_up(const std::string &name, Settings &s)
@@ -124,7 +126,7 @@ int parse(int argc, char **argv, CommandLine &c)
             return 0;
         } else if (a == "--policy") {
             if (!value(v) || !parse_policy(v, s))
-                return fail_usage("unknown policy '" + v + "' (auto, seed, majority, outward, visibility, up, normals)");
+                return fail_usage("unknown policy '" + v + "' (" + policy_names() + ")");
         } else if (a == "--up") {
             if (!value(v) || !parse_up(v, s))
                 return fail_usage("--up takes x, y, z, -x, -y or -z, not '" + v + "'");
