@@ -161,6 +161,14 @@ aliased_views() { # case
 check "two index bufferViews over the same bytes: both meshes right after the repair" aliased_views alias
 check "two index bufferViews overlapping by all but one triangle: both right" aliased_views alias_offset
 
+empty_objects() {
+    local d="$tmp/g/empty"
+    $MESHFIX --quiet "$d/scene.gltf" "$d/out.gltf" || return 1
+    ! grep -q null "$d/out.gltf" || { grep -n -B3 null "$d/out.gltf"; return 1; }
+    $MESHFIX --inspect "$d/out.gltf" | grep -q 'would flip 0 of 12'
+}
+check "a default material, sampler and scene ({}) written back as {} (tinygltf writes null), the output loads" empty_objects
+
 # ---- 4. JSON nested deep ----
 
 check "a .gltf with 20,000 nested arrays: exit 1, one line, no crash" \

@@ -21,6 +21,8 @@ library only (json, struct).
   big/in.glb, big/in.gltf + big/in.bin  about 240 KB, a repair to write
   collide/a/s.gltf, collide/b/t.gltf   different files, both with a
       buffer named scene.bin
+  empty/scene.gltf      a default material, a default sampler and an empty
+      scene ({}: valid glTF, which tinygltf writes back as null)
 """
 import base64
 import json
@@ -192,6 +194,13 @@ def main():
     write(os.path.join(root, "big", "in.glb"), glb(json.dumps(doc), data))
     doc["buffers"][0]["uri"] = "in.bin"
     write_gltf(os.path.join(root, "big", "in.gltf"), doc, data, "in.bin")
+
+    doc, data = document([good], "scene.bin")
+    doc["materials"] = [{}]
+    doc["samplers"] = [{}]
+    doc["scenes"].append({})
+    doc["meshes"][0]["primitives"][0]["material"] = 0
+    write_gltf(os.path.join(root, "empty", "scene.gltf"), doc, data, "scene.bin")
 
     for sub, name, mesh in (("a", "s.gltf", good), ("b", "t.gltf", cube({5}))):
         doc, data = document([mesh], "scene.bin")

@@ -6,6 +6,11 @@
 #   loaders  the example OBJ / OFF / STL / PLY loaders, then a repair
 #   stress   large real-valued meshes, every option field, scratch,
 #            parallel_for, SDF and weld, with an oracle for each call
+#   gltf     the command-line tool's glTF path (load, repair, write,
+#            commit, load again) on mutated .gltf/.glb files with their
+#            companions in a scratch directory; seeds: the glTF files of
+#            assimp-testmodels and tests/cli/hostile_gltf.py, packed by
+#            tests/fuzz/gltf_seeds.py
 #   stress-msan  the same with MemorySanitizer instead (reads of memory
 #            never written); not in the default list: FUZZ_TARGETS adds it
 # A crash does not stop the other targets: its input is saved in
@@ -23,7 +28,7 @@ if ! printf 'int LLVMFuzzerTestOneInput(const char*d,unsigned long n){return 0;}
     apt-get update -qq && apt-get install -y -qq clang libclang-rt-14-dev >/dev/null || exit 1
 fi
 seconds=${FUZZ_SECONDS:-60}
-targets=${FUZZ_TARGETS:-meshfix loaders stress}
+targets=${FUZZ_TARGETS:-meshfix loaders stress gltf}
 mkdir -p build/fuzz
 failed=0
 summary=""
@@ -38,9 +43,28 @@ for target in $targets; do
     stress-msan) source=stress sanitizers="memory -fsanitize-memory-track-origins=2" max_len=200000 timeout=60
         knobs="-DMESHFIX__MORTON_MIN=64 -DMESHFIX__PARALLEL_UNIT=512" ;;
     esac
-    # shellcheck disable=SC2086
-    if ! clang -g -O1 -fsanitize=fuzzer,$sanitizers $knobs ${FUZZ_CFLAGS:-} \
-            -o build/fuzz/fuzz_$target tests/fuzz/fuzz_$source.c -lm; then
+    if [ "$target" = gltf ]; then
+        # C++ against the tool's sources (all but main.cpp) and tinygltf
+        max_len=262144
+        mkdir -p build/fuzz/seeds_gltf
+        /usr/bin/python3 tests/cli/hostile_gltf.py build/fuzz/hostile_gltf &&
+            /usr/bin/python3 tests/fuzz/gltf_seeds.py build/fuzz/seeds_gltf \
+                $(find /usr/share/assimp/models/glTF2 build/fuzz/hostile_gltf -name '*.gltf' -o -name '*.glb' | sort)
+        # shellcheck disable=SC2086
+        build() {
+            clang -g -O1 -fsanitize=fuzzer-no-link,$sanitizers -std=c99 -c -o build/fuzz/gltf_libs.o tools/meshfix/libs.c &&
+                clang++ -g -O1 -std=c++17 -fsanitize=fuzzer,$sanitizers ${FUZZ_CFLAGS:-} -o build/fuzz/fuzz_gltf \
+                    tests/fuzz/fuzz_gltf.cpp $(ls tools/meshfix/*.cpp | grep -v main.cpp) build/fuzz/gltf_libs.o \
+                    -ltinygltf -pthread
+        }
+    else
+        # shellcheck disable=SC2086
+        build() {
+            clang -g -O1 -fsanitize=fuzzer,$sanitizers $knobs ${FUZZ_CFLAGS:-} \
+                -o build/fuzz/fuzz_$target tests/fuzz/fuzz_$source.c -lm
+        }
+    fi
+    if ! build; then
         summary+=$(printf '%-10s %12s  %s' "$target" "-" "does not build")$'\n'
         failed=1
         continue
@@ -54,7 +78,8 @@ for target in $targets; do
     build/fuzz/fuzz_$target -max_total_time="$seconds" -timeout=$timeout -report_slow_units=$timeout \
         -print_final_stats=1 -max_len=$max_len \
         -artifact_prefix=build/fuzz/crashes_$target/ ${FUZZ_FLAGS:-} \
-        build/fuzz/corpus_$target tests/fuzz/corpus/$source >"$log" 2>&1
+        build/fuzz/corpus_$target $(if [ "$target" = gltf ]; then echo build/fuzz/seeds_gltf; else echo tests/fuzz/corpus/$source; fi) \
+        >"$log" 2>&1
     status=$?
     grep -E 'stat::number_of_executed_units|stat::peak_rss|invariant violated|assertion failed|ERROR|WARNING: Memory|SUMMARY|Test unit written|Done' "$log" |
         awk '!seen[$0]++'

@@ -33,6 +33,8 @@ std::string format_of(const std::string &path)
     return "";
 }
 
+bool is_gltf_format(const std::string &format) { return format == "gltf" || format == "glb"; }
+
 std::string directory_of(const std::string &path)
 {
     size_t slash = path.rfind('/');

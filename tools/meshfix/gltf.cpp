@@ -929,6 +929,32 @@ std::string glb_bytes(const std::string &json, const std::vector<unsigned char> 
     return out;
 }
 
+/* tinygltf writes an object with nothing to say (a default material or
+   sampler, an empty scene: valid glTF) as null, which no reader, its own
+   included, takes back: such entries of the top-level arrays, and of the
+   arrays of objects inside them, become {} again. */
+void restore_empty_objects(nlohmann::json &document)
+{
+    auto fix = [](nlohmann::json &array) {
+        if (array.is_array())
+            for (nlohmann::json &entry : array)
+                if (entry.is_null())
+                    entry = nlohmann::json::object();
+    };
+    if (!document.is_object())
+        return;
+    for (auto &member : document.items()) {
+        if (!member.value().is_array() || member.key() == "extensionsUsed" || member.key() == "extensionsRequired")
+            continue;
+        fix(member.value());
+        for (nlohmann::json &entry : member.value())
+            if (entry.is_object())
+                for (const char *inner : {"primitives", "channels", "samplers", "targets"})
+                    if (entry.contains(inner))
+                        fix(entry[inner]);
+    }
+}
+
 bool same_directory(const std::string &a, const std::string &b)
 {
     struct stat sa, sb;
@@ -1009,6 +1035,7 @@ bool GltfFile::write(const std::string &out, const std::string &target, std::str
         error = "cannot serialize '" + target + "'";
         return false;
     }
+    restore_empty_objects(document);
     for (size_t i = 0; i < copy.buffers.size(); ++i) {
         nlohmann::json &b = document["buffers"][i];
         if (with_bin && i == 0) {

@@ -20,7 +20,6 @@
 #include <map>
 #include <mutex>
 #include <pthread.h>
-#include <new>
 #include <sys/stat.h>
 #include <thread>
 #include <unistd.h>
@@ -203,7 +202,6 @@ void collect(const std::string &directory, const std::string &relative, std::vec
     }
 }
 
-bool gltf_format(const std::string &f) { return f == "gltf" || f == "glb"; }
 
 /* A job per input file (directories walked), named for the output and
    --mark directories when there are several; false after a one-line
@@ -274,7 +272,7 @@ bool check_outputs(const CommandLine &c)
         std::string in = format_of(c.inputs[0]), out = format_of(c.output);
         if (out.empty())
             return fail_usage("unknown output format '" + c.output + "' (use .obj, .off, .stl, .ply, .gltf or .glb)"), false;
-        if (gltf_format(out) && !gltf_format(in))
+        if (is_gltf_format(out) && !is_gltf_format(in))
             return fail_usage("glTF output needs a glTF input ('" + c.output + "')"), false;
         if (!check_target(c.output, error))
             return fail_usage(error), false;
@@ -296,84 +294,6 @@ bool check_outputs(const CommandLine &c)
             return fail_usage(error), false;
     }
     return true;
-}
-
-bool write_outputs(Job &job, Ledger &ledger)
-{
-    OutputSet outputs(ledger, job.input);
-    std::string error, in = job.file->format(), out = job.output.empty() ? "" : format_of(job.output);
-    bool ok = true;
-    if (!job.output.empty()) {
-        std::string path = make_parent_directories(job.output) ? outputs.reserve(job.output, error) : "";
-        if (path.empty() && error.empty())
-            error = "cannot make the directory of '" + job.output + "': " + std::strerror(errno);
-        bool same = in == out || (gltf_format(in) && gltf_format(out));
-        ok = !path.empty() && (same ? job.file->write(path, job.output, error)
-                                    : write_triangles(path, *job.file, job.results, false, error));
-    }
-    if (ok && !job.mark.empty()) {
-        std::string path = make_parent_directories(job.mark) ? outputs.reserve(job.mark, error) : "";
-        if (path.empty() && error.empty())
-            error = "cannot make the directory of '" + job.mark + "': " + std::strerror(errno);
-        ok = !path.empty() && write_triangles(path, *job.file, job.results, true, error);
-    }
-    if (ok)
-        ok = outputs.commit(error);
-    job.written = outputs.written;
-    if (!ok) {
-        job.exit = 1;
-        job.error = error;
-    }
-    return ok;
-}
-
-/* Load, repair, write; run_job catches running out of memory. */
-void run_job_steps(Job &job, const Settings &s, Ledger &ledger);
-
-} // namespace
-
-void run_job(Job &job, const Settings &s, Ledger &ledger)
-{
-    try {
-        run_job_steps(job, s, ledger);
-    } catch (const std::bad_alloc &) {
-        job.file.reset();
-        job.results.clear();
-        job.error = job.input + ": out of memory";
-        job.exit = 1;
-    }
-}
-
-namespace {
-
-void run_job_steps(Job &job, const Settings &s, Ledger &ledger)
-{
-    job.file = load_file(job.input, job.error);
-    if (!job.file) {
-        job.error = job.input + ": " + job.error;
-        job.exit = 1;
-        return;
-    }
-    for (size_t i = 0; i < job.file->units.size(); ++i) {
-        job.results.push_back(repair_unit(job.file->units[i], s));
-        const UnitResult &r = job.results.back();
-        if (r.status != MESHFIX_OK && job.exit == 0) {
-            std::string where = job.file->units[i].name.empty() ? "" : " (" + job.file->units[i].name + ")";
-            job.error = job.input + where + ": " + meshfix_result_string(r.status);
-            job.exit = 2;
-        }
-    }
-    if (job.exit != 0)
-        return;
-    for (size_t i = 0; i < job.file->units.size(); ++i) {
-        job.file->review(i, job.results[i].changes);
-        if (!s.inspect)
-            job.file->apply(i, job.results[i].changes);
-    }
-    if (!write_outputs(job, ledger))
-        return;
-    if (s.check && something_wrong(job))
-        job.exit = 3;
 }
 
 /* The jobs on worker threads; main prints each job's report in input

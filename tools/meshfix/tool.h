@@ -68,6 +68,8 @@ bool make_parent_directories(const std::string &file);
    directory, FIFO or read-only file. */
 bool check_target(const std::string &target, std::string &error);
 bool is_directory(const std::string &path);
+/* "gltf" or "glb" (format_of's names): written from each other */
+bool is_gltf_format(const std::string &format);
 std::string directory_of(const std::string &path);
 std::string base_name(const std::string &path);
 /* The file a path names, as one string for comparisons: resolved by the
