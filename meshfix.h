@@ -359,7 +359,19 @@ typedef struct meshfix_outputs {
     size_t patch_confidence_capacity; /* in: elements of patch_confidence */
     meshfix_component *components; /* out: the first components_capacity components */
     size_t components_capacity;    /* in */
+    unsigned char *patch_evidence; /* out: by patch id, what decided it: a meshfix_evidence (orient) */
+    size_t patch_evidence_capacity; /* in: elements of patch_evidence */
 } meshfix_outputs;
+
+/* What decided a patch (outputs.patch_evidence; report.evidence counts them). */
+typedef enum meshfix_evidence {
+    MESHFIX_EVIDENCE_NONE = 0,   /* nothing significant: kept the side most of its area faces */
+    MESHFIX_EVIDENCE_VOLUME,     /* closed or nearly closed: signed volume and nesting */
+    MESHFIX_EVIDENCE_PARITY,     /* crossings of its own surface or of the shells around it */
+    MESHFIX_EVIDENCE_VISIBILITY, /* rays escaping from one side */
+    MESHFIX_EVIDENCE_NORMALS,    /* the caller's normals */
+    MESHFIX_EVIDENCE_POLICY      /* the rule of a policy that looks at nothing else (seed, majority, up, SDF) */
+} meshfix_evidence;
 
 /* What happened, in one word (meshfix_summary says it in a line). */
 typedef enum meshfix_verdict {
@@ -818,7 +830,7 @@ typedef struct meshfix__mesh {
     meshfix_check_failure *failure;
     int policy;                     /* < 0: inspect */
     float *confidence;              /* per patch, from the geometric policies */
-    unsigned char *patch_kind;      /* per patch: MESHFIX__BY_*, from the geometric policies */
+    unsigned char *patch_kind;      /* per patch: a meshfix_evidence, from the geometric policies */
 } meshfix__mesh;
 
 /* The last vertex's x y z (`bytes` at (vertex_count - 1) * stride) lie
@@ -3511,13 +3523,8 @@ MESHFIX__PRIVATE unsigned int meshfix__boxes_around(const meshfix__node *nodes, 
 #define MESHFIX__NEARLY_CLOSED 2 /* gapped, and its own crossings say it has an inside and an outside */
 #define MESHFIX__CLOSED 3        /* every edge is matched inside the unit */
 
-/* The kinds of evidence, in the order they are asked (report counts) */
-#define MESHFIX__BY_NOTHING 0
-#define MESHFIX__BY_VOLUME 1     /* closed (or nearly): signed volume and nesting */
-#define MESHFIX__BY_PARITY 2     /* open: crossings of its own surface or of the shells around it */
-#define MESHFIX__BY_ESCAPE 3     /* rays that escape the model from one side (visibility) */
-#define MESHFIX__BY_NORMALS 4    /* the caller's normals */
-#define MESHFIX__BY_POLICY 5     /* the rule of a policy that looks at nothing else (seed, SDF, up) */
+/* The kinds of evidence are the public meshfix_evidence, in the order
+   they are asked (report counts). */
 
 typedef struct meshfix__unit {
     double kept, reversed;     /* area (count without positions) facing the frame's way as given, and against */
@@ -3532,7 +3539,7 @@ typedef struct meshfix__unit {
     unsigned char closed;      /* MESHFIX__CLOSED, MESHFIX__NEARLY_CLOSED, MESHFIX__GAPPED, MESHFIX__OPEN */
     unsigned char cavity;
     unsigned char reversed_prior; /* an open unit of a reversed scene: its majority is likely wrong */
-    unsigned char kind;        /* MESHFIX__BY_*: what gave `mean` */
+    unsigned char kind;        /* a meshfix_evidence: what gave `mean` */
     double mean, error, weight; /* geometric vote for the frame's side in [-1, 1], its standard error, its weight */
     unsigned int turn;         /* the verdict: 1 turns the unit over, relative to its frame */
     float confidence;
@@ -3759,7 +3766,7 @@ MESHFIX__PRIVATE int meshfix__sample_sides(const meshfix__geometry *g, unsigned 
     back[0] = -d[0], back[1] = -d[1], back[2] = -d[2];
     for (side = 0; side < 2; ++side) {
         meshfix__setup_ray(&ray, point, side ? back : d, g->t_min, 1e30f);
-        if (kind == MESHFIX__BY_ESCAPE) {
+        if (kind == MESHFIX_EVIDENCE_VISIBILITY) {
             q.mode = MESHFIX__ANY_HIT;
             q.skip = t;
             inside[side] = meshfix__trace(&g->bvh, g->bvh.top, &ray, &q);
@@ -4969,9 +4976,9 @@ MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned in
     u->weight = weight;
     u->kind = (unsigned char)kind;
     for (i = 0; i < cap; ++i) {
-        int vote = kind == MESHFIX__BY_VOLUME ? meshfix__sample_nesting(g, index, i, list, count)
+        int vote = kind == MESHFIX_EVIDENCE_VOLUME ? meshfix__sample_nesting(g, index, i, list, count)
                                                : meshfix__sample_sides(g, index, kind, i, list, count);
-        u->rays += kind == MESHFIX__BY_VOLUME ? 1u : 2u;
+        u->rays += kind == MESHFIX_EVIDENCE_VOLUME ? 1u : 2u;
         meshfix__add_vote(&votes, vote);
         if ((i + 1) % MESHFIX__BATCH != 0)
             continue;
@@ -4991,7 +4998,7 @@ MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned in
    inside of a car body in a soup) blocks most of its rays. */
 MESHFIX__PRIVATE int meshfix__significant(const meshfix__unit *u, double sigma)
 {
-    return MESHFIX_FABS(u->mean) - sigma * u->error >= (u->kind == MESHFIX__BY_ESCAPE ? 0.35 : 0.1);
+    return MESHFIX_FABS(u->mean) - sigma * u->error >= (u->kind == MESHFIX_EVIDENCE_VISIBILITY ? 0.35 : 0.1);
 }
 
 /* An edge of unit u passes through a triangle of unit e. */
@@ -5056,7 +5063,7 @@ MESHFIX__PRIVATE void meshfix__gap_evidence(const meshfix__geometry *g, unsigned
     meshfix__votes votes;
     MESHFIX_MEMSET(&votes, 0, sizeof(votes));
     for (i = 0; i < cap; ++i) {
-        meshfix__add_vote(&votes, meshfix__sample_sides(g, index, MESHFIX__BY_PARITY, i, &index, 1));
+        meshfix__add_vote(&votes, meshfix__sample_sides(g, index, MESHFIX_EVIDENCE_PARITY, i, &index, 1));
         u->rays += 2;
         if ((i + 1) % MESHFIX__BATCH != 0)
             continue;
@@ -5081,14 +5088,14 @@ MESHFIX__PRIVATE void meshfix__shell_evidence(const meshfix__geometry *g, unsign
     meshfix__unit *u = &g->units[index];
     unsigned int list[MESHFIX__MOST_ENCLOSERS], n = meshfix__enclosers(g, index, list);
     double side = (u->closed == MESHFIX__CLOSED ? u->volume : u->mean) > 0 ? 1.0 : -1.0, inside;
-    u->kind = MESHFIX__BY_VOLUME;
+    u->kind = MESHFIX_EVIDENCE_VOLUME;
     u->weight = MESHFIX__WEIGHT_STRONG;
     u->mean = side;
     u->error = 0.0;
     if (n == 0)
         return;
     /* the nesting vote (+1 inside) turns the side around */
-    inside = meshfix__measure(g, index, u, MESHFIX__BY_VOLUME, MESHFIX__WEIGHT_STRONG, -side, list, n,
+    inside = meshfix__measure(g, index, u, MESHFIX_EVIDENCE_VOLUME, MESHFIX__WEIGHT_STRONG, -side, list, n,
                               meshfix__ray_cap(g, u, total_area));
     /* inside: unless it crosses a shell (asked only now: it costs a ray per edge) */
     if (inside > 0 && meshfix__crosses_a_shell(g, index)) {
@@ -5110,24 +5117,24 @@ MESHFIX__PRIVATE void meshfix__open_evidence(const meshfix__geometry *g, unsigne
     unsigned int cap = meshfix__ray_cap(g, u, total_area);
     double own_weight = g->reversed_scene ? MESHFIX__WEIGHT_STRONG : MESHFIX__WEIGHT_WEAK;
     u->reversed_prior = (unsigned char)g->reversed_scene;
-    u->kind = MESHFIX__BY_NOTHING;
+    u->kind = MESHFIX_EVIDENCE_NONE;
     u->mean = u->error = u->weight = 0.0;
     if (n != 0 && meshfix__could_turn(u, MESHFIX__WEIGHT_STRONG)) {
-        meshfix__measure(g, index, u, MESHFIX__BY_PARITY, MESHFIX__WEIGHT_STRONG, 1.0, list, n, cap);
+        meshfix__measure(g, index, u, MESHFIX_EVIDENCE_PARITY, MESHFIX__WEIGHT_STRONG, 1.0, list, n, cap);
         if (meshfix__significant(u, g->sigma))
             return;
     }
     if (meshfix__could_turn(u, own_weight)) {
-        meshfix__measure(g, index, u, MESHFIX__BY_PARITY, own_weight, 1.0, &index, 1, cap);
+        meshfix__measure(g, index, u, MESHFIX_EVIDENCE_PARITY, own_weight, 1.0, &index, 1, cap);
         if (meshfix__significant(u, g->sigma))
             return;
     }
     if (g->bvh.top != MESHFIX__NONE && meshfix__could_turn(u, MESHFIX__WEIGHT_WEAK)) {
-        meshfix__measure(g, index, u, MESHFIX__BY_ESCAPE, MESHFIX__WEIGHT_WEAK, 1.0, NULL, 0, cap);
+        meshfix__measure(g, index, u, MESHFIX_EVIDENCE_VISIBILITY, MESHFIX__WEIGHT_WEAK, 1.0, NULL, 0, cap);
         if (meshfix__significant(u, g->sigma))
             return;
     }
-    u->kind = MESHFIX__BY_NOTHING;
+    u->kind = MESHFIX_EVIDENCE_NONE;
     u->mean = u->error = u->weight = 0.0;
 }
 
@@ -5258,7 +5265,7 @@ MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g
         const meshfix__unit *x = &g->units[u];
         int majority;
         double low, high;
-        if (x->kind != MESHFIX__BY_VOLUME || !meshfix__significant(x, g->sigma))
+        if (x->kind != MESHFIX_EVIDENCE_VOLUME || !meshfix__significant(x, g->sigma))
             continue;
         meshfix__weigh(x, g->sigma, &low, &high, &majority);
         count++;
@@ -5272,7 +5279,7 @@ MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g
 MESHFIX__PRIVATE int meshfix__sample_escape(const meshfix__geometry *g, unsigned int p, unsigned int index,
                                            unsigned int *front, unsigned int *back)
 {
-    unsigned int state = meshfix__stream(g, p, MESHFIX__BY_ESCAPE, index), t, side;
+    unsigned int state = meshfix__stream(g, p, MESHFIX_EVIDENCE_VISIBILITY, index), t, side;
     float point[3], d[3], reverse[3];
     double n[3];
     int blocked[2], facing;
@@ -5312,7 +5319,7 @@ MESHFIX__PRIVATE void meshfix__verdict_follow(meshfix__unit *u, double sigma, do
         return;
     }
     u->weight = 0;
-    u->kind = MESHFIX__BY_NOTHING;
+    u->kind = MESHFIX_EVIDENCE_NONE;
     meshfix__verdict_from_weights(u, sigma);
 }
 
@@ -5338,7 +5345,7 @@ MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, unsigned int
 {
     const meshfix_options *o = m->options;
     meshfix__patch_unit(s, u);
-    u->kind = MESHFIX__BY_POLICY;
+    u->kind = MESHFIX_EVIDENCE_POLICY;
     if (policy == MESHFIX_POLICY_SEED) {
         u->turn = 0;
         u->confidence = 1.0f;
@@ -5354,14 +5361,14 @@ MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, unsigned int
         meshfix__verdict_follow(u, sigma, 1e-6);
     } else if (policy == MESHFIX_POLICY_NORMALS) {
         u->mean = s->normals_area > 0 ? s->normals / s->normals_area : 0.0;
-        u->kind = MESHFIX__BY_NORMALS;
+        u->kind = MESHFIX_EVIDENCE_NORMALS;
         meshfix__verdict_follow(u, sigma, 0.05);
     } else {
         /* MAJORITY; AUTO and OUTWARD on one closed shell alone: its volume */
-        u->kind = MESHFIX__BY_NOTHING;
+        u->kind = MESHFIX_EVIDENCE_NONE;
         if (policy != MESHFIX_POLICY_MAJORITY && meshfix__is_closed_orientable(m, p) &&
             meshfix__volume_is_meaningful(s->volume_relative, s->area)) {
-            u->kind = MESHFIX__BY_VOLUME;
+            u->kind = MESHFIX_EVIDENCE_VOLUME;
             u->weight = MESHFIX__WEIGHT_STRONG;
             u->mean = s->volume_relative > 0 ? 1.0 : -1.0;
         }
@@ -5374,8 +5381,8 @@ MESHFIX__PRIVATE void meshfix__decide_unit(meshfix__unit *u, double sigma)
 {
     meshfix__verdict_from_weights(u, sigma);
     if (!meshfix__significant(u, sigma)) {
-        u->kind = u->normals_area > 0 && MESHFIX_FABS(u->normals / u->normals_area) >= 0.1 ? MESHFIX__BY_NORMALS
-                                                                                             : MESHFIX__BY_NOTHING;
+        u->kind = u->normals_area > 0 && MESHFIX_FABS(u->normals / u->normals_area) >= 0.1 ? MESHFIX_EVIDENCE_NORMALS
+                                                                                             : MESHFIX_EVIDENCE_NONE;
     }
 }
 
@@ -5574,7 +5581,7 @@ MESHFIX__PRIVATE void meshfix__visibility_verdicts(meshfix__geometry *g, meshfix
         r->mean = m_f - m_b;
         s2 = meshfix__maxd(m_f + m_b - r->mean * r->mean, n > 0 ? 1.0 / n : 1.0);
         r->error = n > 0 ? MESHFIX_SQRT(s2 / n) : 1.0;
-        r->kind = MESHFIX__BY_ESCAPE;
+        r->kind = MESHFIX_EVIDENCE_VISIBILITY;
         meshfix__verdict_follow(r, g->sigma, 0.0);
         merge->turn[p] ^= (unsigned char)r->turn;
     }
@@ -5880,18 +5887,18 @@ MESHFIX__PRIVATE void meshfix__patch_verdict(const meshfix__mesh *m, unsigned in
     }
     if (u->confidence < o->evidence.min_confidence) {
         u->turn = s->weight_kept < s->weight_reversed;
-        u->kind = MESHFIX__BY_NOTHING;
+        u->kind = MESHFIX_EVIDENCE_NONE;
     }
 }
 
 MESHFIX__PRIVATE void meshfix__count_verdict(const meshfix__unit *u, size_t triangles, double area, double doubtful,
                                             meshfix_report *r)
 {
-    r->evidence.patches_by_volume += u->kind == MESHFIX__BY_VOLUME;
-    r->evidence.patches_by_parity += u->kind == MESHFIX__BY_PARITY;
-    r->evidence.patches_by_visibility += u->kind == MESHFIX__BY_ESCAPE;
-    r->evidence.patches_by_normals += u->kind == MESHFIX__BY_NORMALS;
-    r->evidence.patches_kept += u->kind == MESHFIX__BY_NOTHING || u->kind == MESHFIX__BY_POLICY;
+    r->evidence.patches_by_volume += u->kind == MESHFIX_EVIDENCE_VOLUME;
+    r->evidence.patches_by_parity += u->kind == MESHFIX_EVIDENCE_PARITY;
+    r->evidence.patches_by_visibility += u->kind == MESHFIX_EVIDENCE_VISIBILITY;
+    r->evidence.patches_by_normals += u->kind == MESHFIX_EVIDENCE_NORMALS;
+    r->evidence.patches_kept += u->kind == MESHFIX_EVIDENCE_NONE || u->kind == MESHFIX_EVIDENCE_POLICY;
     if ((double)u->confidence < doubtful) {
         r->patches_doubtful++;
         r->triangles_doubtful += triangles;
@@ -5921,6 +5928,8 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
                                    meshfix__maxd(0.5, (double)o->evidence.min_confidence), r);
             if (m->outputs->patch_confidence != NULL && p < m->outputs->patch_confidence_capacity)
                 m->outputs->patch_confidence[p] = verdict.confidence;
+            if (m->outputs->patch_evidence != NULL && p < m->outputs->patch_evidence_capacity)
+                m->outputs->patch_evidence[p] = verdict.kind;
             turn = verdict.turn;
             for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
                 unsigned int t = m->queue[i];

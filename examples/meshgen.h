@@ -98,6 +98,13 @@ int gen_subdivide(mio_mesh *m);
    model has no triangle. */
 size_t gen_cut(mio_mesh *out, unsigned int *patch_of, const mio_mesh *in, size_t patch_count, float gap,
                unsigned long long seed);
+/* The same regions, with seams as real exports have them: every copy of a
+   vertex that lies on a seam (its vertex is in two or more regions) moves
+   by its own random offset, of length 0.5 to 1 times `jitter` times the
+   model's box diagonal, in a uniformly random direction; the seams gap
+   and overlap by turns. Other vertices stay. Returns the regions. */
+size_t gen_cut_jittered(mio_mesh *out, unsigned int *patch_of, const mio_mesh *in, size_t patch_count, double jitter,
+                        unsigned long long seed);
 /* Shuffles the triangles and rotates each one's corners (which keeps its
    winding); truth moves with them. from (may be NULL) gets, for each new
    position, the triangle's old index. Returns 0 when out of memory. */
@@ -940,10 +947,37 @@ static size_t gen_regions(const mio_mesh *m, size_t count, unsigned long long se
     return regions;
 }
 
+static size_t gen_cut_regions(mio_mesh *out, unsigned int *patch_of, const mio_mesh *in, size_t patch_count, float gap,
+                              double jitter, unsigned long long seed);
+
 size_t gen_cut(mio_mesh *out, unsigned int *patch_of, const mio_mesh *in, size_t patch_count, float gap,
                unsigned long long seed)
 {
+    return gen_cut_regions(out, patch_of, in, patch_count, gap, 0.0, seed);
+}
+
+size_t gen_cut_jittered(mio_mesh *out, unsigned int *patch_of, const mio_mesh *in, size_t patch_count, double jitter,
+                        unsigned long long seed)
+{
+    return gen_cut_regions(out, patch_of, in, patch_count, 0.0f, jitter, seed);
+}
+
+/* A point uniformly in a ball shell: direction uniform, length in [0.5, 1). */
+static void gen_offset(unsigned long long *state, double length, double out[3])
+{
+    double z = 2.0 * gen_uniform(state) - 1.0, a = 2.0 * 3.14159265358979323846 * gen_uniform(state);
+    double r = sqrt(1.0 - z * z), l = length * (0.5 + 0.5 * gen_uniform(state));
+    out[0] = l * r * cos(a), out[1] = l * r * sin(a), out[2] = l * z;
+}
+
+static size_t gen_cut_regions(mio_mesh *out, unsigned int *patch_of, const mio_mesh *in, size_t patch_count, float gap,
+                              double jitter, unsigned long long seed)
+{
     size_t triangles = in->index_count / 3, regions = 0, i, used = 0;
+    unsigned int *first_region = NULL;
+    unsigned char *on_seam = NULL;
+    double diagonal = 0.0, lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    unsigned long long state = seed ^ 0x9E3779B97F4A7C15ull;
     unsigned int *region = (unsigned int *)malloc(triangles * sizeof(unsigned int) + 1);
     double *centroid = NULL;
     gen_map copies;
@@ -963,15 +997,43 @@ size_t gen_cut(mio_mesh *out, unsigned int *patch_of, const mio_mesh *in, size_t
             c[k] += (double)in->positions[3 * (size_t)in->indices[i] + k];
         c[3] += 1;
     }
+    if (jitter > 0) { /* which vertices are on a seam, and the model's size */
+        first_region = (unsigned int *)malloc(in->vertex_count * sizeof(unsigned int) + 1);
+        on_seam = (unsigned char *)calloc(in->vertex_count + 1, 1);
+        if (first_region == NULL || on_seam == NULL) {
+            regions = 0;
+            goto done;
+        }
+        for (i = 0; i < in->vertex_count; ++i)
+            first_region[i] = GEN_NONE;
+        for (i = 0; i < in->index_count; ++i) {
+            unsigned int v = in->indices[i];
+            if (first_region[v] == GEN_NONE)
+                first_region[v] = region[i / 3];
+            else if (first_region[v] != region[i / 3])
+                on_seam[v] = 1;
+            for (k = 0; k < 3; ++k) {
+                double p = (double)in->positions[3 * (size_t)v + k];
+                lo[k] = p < lo[k] ? p : lo[k];
+                hi[k] = p > hi[k] ? p : hi[k];
+            }
+        }
+        for (k = 0; k < 3; ++k)
+            diagonal += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+        diagonal = sqrt(diagonal);
+    }
     for (i = 0; i < in->index_count; ++i) {
         unsigned int r = region[i / 3], v = in->indices[i];
         unsigned int *copy = gen_map_slot(&copies, ((unsigned long long)r << 32) | v);
         if (*copy == GEN_NONE) {
             const double *c = centroid + 4 * (size_t)r;
+            double offset[3] = {0, 0, 0};
+            if (on_seam != NULL && on_seam[v])
+                gen_offset(&state, jitter * diagonal, offset);
             *copy = (unsigned int)used;
             for (k = 0; k < 3; ++k) {
                 double p = (double)in->positions[3 * (size_t)v + k];
-                out->positions[3 * used + k] = (float)(p + (c[k] / c[3] - p) * (double)gap);
+                out->positions[3 * used + k] = (float)(p + (c[k] / c[3] - p) * (double)gap + offset[k]);
             }
             used++;
         }
@@ -986,6 +1048,8 @@ done:
     gen_map_free(&copies);
     free(centroid);
     free(region);
+    free(first_region);
+    free(on_seam);
     return regions;
 }
 

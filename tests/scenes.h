@@ -67,6 +67,10 @@ int scene_assembly(scene *s, unsigned detail);        /* housing with a window, 
 int scene_assembly_sealed(scene *s, unsigned detail); /* sealed housing, parts only inside */
 int scene_parts(scene *s, unsigned detail);           /* every part generator, side by side */
 int scene_spider(scene *s, unsigned detail);          /* assimp's spider.obj, closed parts, subdivided */
+int scene_city(scene *s, unsigned detail);            /* 26 closed buildings (boxes, L and U blocks) on a block */
+int scene_cavity_box(scene *s, unsigned detail);      /* a box around a closed shell wound inward (a hollow) */
+int scene_crossing(scene *s, unsigned detail);        /* three closed shells through each other, each outward */
+int scene_cad_part(scene *s, unsigned detail);        /* a machined block: through-holes, a pocket, a slot */
 
 /* The scene table: scene_get(i) for i < scene_count(), or by name (NULL
    when unknown). */
@@ -456,6 +460,101 @@ int scene_parts(scene *s, unsigned detail)
     return scene_done(s, ok);
 }
 
+/* ---- blocks of solids: the trust suite's families ---- */
+
+/* 26 closed buildings on a 6 x 5 block (four lots left empty), as a BIM
+   export gives them: boxes, L and U blocks (unions of boxes, welded where
+   they meet), rows of houses that share party walls (each house its own
+   closed box, wall on wall), towers standing on podiums (the tower's floor
+   on the podium's roof), all standing on a ground slab (a closed box the
+   buildings' floors rest on). Every solid faces out; none is welded to
+   another, so they touch without sharing a vertex. */
+int scene_city(scene *s, unsigned detail)
+{
+    double h = 1.0 / (detail > 0 ? detail : 1);
+    unsigned lot, built = 0;
+    mio_mesh g;
+    gen_aabb slab = gen_make_aabb(-0.3f, -0.3f, -0.2f, 8.8f, 7.3f, 0);
+    int ok;
+    scene_init(s);
+    ok = scene_add(s, &g, gen_boxes(&g, &slab, 1, NULL, 0, (float)(4 * h)), "ground", 0);
+    for (lot = 0; ok && lot < 30 && built < 26; ++lot) {
+        float x = 1.5f * (float)(lot % 6), y = 1.5f * (float)(lot / 6), top = 0.4f + 0.3f * (float)((lot * 7) % 5);
+        gen_aabb add[4];
+        size_t n = 1, k;
+        if (lot == 8 || lot == 15 || lot == 22 || lot == 27)
+            continue; /* a square, a park: streets meet there */
+        if (lot % 7 == 3) { /* a row of three houses, wall on wall */
+            for (k = 0; ok && k < 3 && built < 26; ++k, ++built) {
+                add[0] = gen_make_aabb(x + 0.4f * (float)k, y, 0, x + 0.4f * (float)(k + 1), y + 0.8f, 0.3f + 0.1f * (float)k);
+                ok = scene_add(s, &g, gen_boxes(&g, add, 1, NULL, 0, (float)h), "house", 0);
+            }
+            continue;
+        }
+        if (lot % 4 == 1) { /* a tower on a podium */
+            add[0] = gen_make_aabb(x, y, 0, x + 1.1f, y + 1.0f, 0.3f);
+            add[1] = gen_make_aabb(x + 0.3f, y + 0.2f, 0.3f, x + 0.8f, y + 0.7f, 0.3f + 2 * top);
+            ok = scene_add(s, &g, gen_boxes(&g, &add[0], 1, NULL, 0, (float)h), "podium", 0) &&
+                 scene_add(s, &g, gen_boxes(&g, &add[1], 1, NULL, 0, (float)h), "tower", 0);
+            built++;
+            continue;
+        }
+        add[0] = gen_make_aabb(x, y, 0, x + 1.0f, y + 0.6f, top);
+        if (lot % 3 == 1) /* an L: a wing along y */
+            add[n++] = gen_make_aabb(x, y, 0, x + 0.4f, y + 1.0f, 0.7f * top);
+        if (lot % 5 == 2) { /* a U: wings on both ends */
+            add[n++] = gen_make_aabb(x, y, 0, x + 0.3f, y + 1.1f, top);
+            add[n++] = gen_make_aabb(x + 0.7f, y, 0, x + 1.0f, y + 1.1f, top);
+        }
+        ok = scene_add(s, &g, gen_boxes(&g, add, n, NULL, 0, (float)h), "building", 0);
+        built++;
+    }
+    return scene_done(s, ok);
+}
+
+/* A solid box with a hollow in it: the box faces out, the hollow's wall
+   (a sphere) faces into the hollow. */
+int scene_cavity_box(scene *s, unsigned detail)
+{
+    static const float lo[3] = {-1.5f, -1.5f, -1.5f}, hi[3] = {1.5f, 1.5f, 1.5f};
+    mio_mesh g;
+    unsigned rings = detail > 3 ? detail : 3;
+    scene_init(s);
+    return scene_done(s, scene_add(s, &g, gen_box(&g, detail > 0 ? detail : 1, lo, hi), "box", 0) &&
+                             scene_add(s, &g, scene_hollow(&g, rings, 1.0f), "hollow", 0));
+}
+
+/* Three closed shells through each other (a sphere, a box and a torus, as
+   overlapping parts of an assembly or a soup of solids are exported):
+   each faces out of its own material. */
+int scene_crossing(scene *s, unsigned detail)
+{
+    static const float lo[3] = {-0.2f, -0.7f, -0.7f}, hi[3] = {1.6f, 0.7f, 0.7f};
+    static const float at[3] = {0.9f, 0, 0};
+    mio_mesh g;
+    unsigned rings = detail > 3 ? detail : 3;
+    scene_init(s);
+    return scene_done(s, scene_add(s, &g, gen_sphere(&g, rings, 2 * rings, 0, 0, 0, 1), "sphere", 0) &&
+                             scene_add(s, &g, gen_box(&g, detail > 0 ? detail : 1, lo, hi), "box", 0) &&
+                             scene_add_placed(s, &g, gen_torus(&g, 2 * rings, rings, 0.9f, 0.3f), "torus", 0,
+                                              SCENE_Z_TO_Y, at));
+}
+
+/* A machined block: two through-holes, a blind pocket from the top and a
+   slot along the bottom; one closed surface of genus 2. */
+int scene_cad_part(scene *s, unsigned detail)
+{
+    gen_aabb add = gen_make_aabb(0, 0, 0, 2.0f, 1.2f, 0.8f), cut[4];
+    mio_mesh g;
+    double h = 1.0 / (detail > 0 ? detail : 1);
+    cut[0] = gen_make_aabb(0.2f, 0.3f, -0.1f, 0.5f, 0.6f, 0.9f);   /* hole */
+    cut[1] = gen_make_aabb(1.5f, 0.6f, -0.1f, 1.8f, 0.9f, 0.9f);   /* hole */
+    cut[2] = gen_make_aabb(0.8f, 0.2f, 0.4f, 1.3f, 1.0f, 0.9f);    /* pocket */
+    cut[3] = gen_make_aabb(-0.1f, 0.5f, -0.1f, 2.1f, 0.7f, 0.15f); /* slot */
+    scene_init(s);
+    return scene_done(s, scene_add(s, &g, gen_boxes(&g, &add, 1, cut, 4, (float)h), "block", 0));
+}
+
 /* ---- a real model ---- */
 
 static const char *scene_models_dir(void)
@@ -594,6 +693,10 @@ static const scene_info SCENES[] = {
     {"assembly_sealed", scene_assembly_sealed, 20, 90, "sealed housing (hollow inward), the same parts inside only"},
     {"parts", scene_parts, 25, 130, "box, cylinder, pipe, channel, bracket, cup, housings, disc side by side"},
     {"spider", scene_spider, 0, 4, "assimp-testmodels OBJ/spider.obj: its closed parts, outward, subdivided detail times"},
+    {"city", scene_city, 10, 40, "26 buildings on a ground slab: blocks, party-wall rows, towers on podiums, touching"},
+    {"cavity_box", scene_cavity_box, 20, 150, "box 3 wide around a hollow r 1 (wound inward)"},
+    {"crossing", scene_crossing, 30, 140, "a sphere, a box and a torus through each other, each outward"},
+    {"cad_part", scene_cad_part, 20, 110, "machined block: two through-holes, a pocket, a slot (genus 2)"},
 };
 
 size_t scene_count(void)
