@@ -215,6 +215,7 @@ _weld = _declare("meshfix_weld", c_int, [c_void_p, c_void_p, c_size_t, c_size_t,
 _scratch_size = _declare("meshfix_scratch_size", c_size_t, [c_size_t, c_size_t, POINTER(_Options)])
 _result_string = _declare("meshfix_result_string", c_char_p, [c_int])
 _verdict_string = _declare("meshfix_verdict_string", c_char_p, [c_int])
+_result_name = _declare("meshfix_python_result_name", c_char_p, [c_int])
 
 # ---- enums ----
 
@@ -265,9 +266,22 @@ class Requirement(enum.IntFlag):
 VISIBILITY_COHERENCE_ONLY = 1
 VISIBILITY_ONLY = 2
 
-_RESULT_NAMES = ["MESHFIX_OK", "MESHFIX_ERROR_INVALID_ARGUMENT", "MESHFIX_ERROR_NOT_TRIANGLES",
-                 "MESHFIX_ERROR_INDEX_OUT_OF_RANGE", "MESHFIX_ERROR_TOO_LARGE", "MESHFIX_ERROR_POSITIONS_REQUIRED",
-                 "MESHFIX_ERROR_SCRATCH_TOO_SMALL", "MESHFIX_ERROR_OUT_OF_MEMORY", "MESHFIX_ERROR_NON_FINITE"]
+
+def _result_names():
+    """The result codes' names, MESHFIX_OK first: the header's MESHFIX_RESULT_LIST as the library has
+    it, so a code added there is named here without a copy of the list to fall behind."""
+    names = []
+    while _result_name(len(names)) is not None:
+        names.append(_result_name(len(names)).decode())
+    return names
+
+
+_RESULT_NAMES = _result_names()
+_RESULT_CODES = {name: code for code, name in enumerate(_RESULT_NAMES)}
+
+
+def _result_name_of(result, unknown):
+    return _RESULT_NAMES[result] if 0 <= result < len(_RESULT_NAMES) else unknown
 
 
 class MeshfixError(Exception):
@@ -275,7 +289,7 @@ class MeshfixError(Exception):
 
     def __init__(self, result):
         self.result = int(result)
-        self.name = _RESULT_NAMES[self.result] if 0 <= self.result < len(_RESULT_NAMES) else "MESHFIX_ERROR"
+        self.name = _result_name_of(self.result, "MESHFIX_ERROR")
         super().__init__("%s: %s" % (self.name, _result_string(self.result).decode()))
 
 
@@ -391,7 +405,7 @@ def _indices(indices):
         pass  # as they are: index_size 2 or 4
     elif a.dtype.kind in "iu":  # int64 (NumPy's default), int32, ...: a checked copy
         if a.size and (a.min() < 0 or a.max() > 0xFFFFFFFF):
-            raise MeshfixError(3)
+            raise MeshfixError(_RESULT_CODES["MESHFIX_ERROR_INDEX_OUT_OF_RANGE"])
         a = a.astype(np.uint32)
     else:
         raise TypeError("meshfix: indices must be an integer array (uint16 or uint32 go to C as they are), "
@@ -706,8 +720,7 @@ def check(indices, positions=None, requirements="consistent", **options):
                  triangle=None if failure.triangle == none else failure.triangle,
                  edge=None if edge == (0xFFFFFFFF, 0xFFFFFFFF) else edge,
                  text=failure.text.decode(),
-                 result=_RESULT_NAMES[failure.result] if 0 <= failure.result < len(_RESULT_NAMES) else
-                 str(failure.result))
+                 result=_result_name_of(failure.result, str(failure.result)))
 
 
 def weld(positions, tolerance=0.0, **options):

@@ -106,6 +106,22 @@ def test_version_is_the_headers():
     assert meshfix.__version__ == ".".join(parts)
 
 
+def header_list(macro):
+    """(name, text) of each X(name, "text") in one of meshfix.h's X-macro lists."""
+    with open(os.path.join(ROOT, "meshfix.h")) as f:
+        body = re.search(r"#define %s\(X\)((?:.*\\\n)*.*)" % macro, f.read()).group(1)
+    return re.findall(r'X\((\w+), "((?:[^"\\]|\\.)*)"\)', body)
+
+
+def test_result_names_are_the_headers():
+    """Every code of MESHFIX_RESULT_LIST has its name and the library's text."""
+    results = header_list("MESHFIX_RESULT_LIST")
+    assert ("MESHFIX_ERROR_NORMALS_REQUIRED", results[-1][1]) == results[-1]
+    for code, (name, text) in enumerate(results):
+        e = meshfix.MeshfixError(code)
+        assert e.result == code and e.name == name and str(e) == "%s: %s" % (name, text)
+
+
 def tetrahedron():
     positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
     indices = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 3, 2]], np.uint32)
@@ -332,6 +348,20 @@ def test_errors_and_conversions():
     assert empty.size == 0 and report.verdict == meshfix.Verdict.CLEAN
     check = meshfix.check(indices, positions, ["consistent", "closed"])
     assert not check and check.requirement == meshfix.Requirement.CONSISTENT and check.triangle == 0
+
+
+def test_normals_policy_needs_positions_and_normals():
+    indices, positions = tetrahedron()
+    normals = np.cross(positions[indices[:, 1]] - positions[indices[:, 0]],
+                       positions[indices[:, 2]] - positions[indices[:, 0]])
+    texts = dict(header_list("MESHFIX_RESULT_LIST"))
+    for given, evidence, name in ((None, {"triangle_normals": normals}, "MESHFIX_ERROR_POSITIONS_REQUIRED"),
+                                  (positions, {}, "MESHFIX_ERROR_NORMALS_REQUIRED")):
+        with pytest.raises(meshfix.MeshfixError) as e:
+            meshfix.orient(indices, given, policy="normals", evidence=evidence)
+        assert e.value.name == name and str(e.value) == "%s: %s" % (name, texts[name])
+    fixed, report = meshfix.orient(indices, positions, policy="normals", evidence={"triangle_normals": -normals})
+    assert report.triangles_flipped == 3 and report.evidence.patches_by_normals == 1
 
 
 def test_many_components_all_reported():
