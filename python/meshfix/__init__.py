@@ -216,19 +216,25 @@ _scratch_size = _declare("meshfix_scratch_size", c_size_t, [c_size_t, c_size_t, 
 _result_string = _declare("meshfix_result_string", c_char_p, [c_int])
 _verdict_string = _declare("meshfix_verdict_string", c_char_p, [c_int])
 _result_name = _declare("meshfix_python_result_name", c_char_p, [c_int])
+_policy_string = _declare("meshfix_policy_string", c_char_p, [c_int])
+_policy_from_string = _declare("meshfix_policy_from_string", c_int, [c_char_p])
 
 # ---- enums ----
 
 
-class Policy(enum.IntEnum):
-    AUTO = 0
-    SEED = 1
-    MAJORITY = 2
-    OUTWARD = 3
-    SDF = 4
-    VISIBILITY = 5
-    UP = 6
-    NORMALS = 7
+def _member(name):
+    """A name as an enum member's: "per triangle", "Per-Triangle" -> PER_TRIANGLE."""
+    return name.strip().upper().replace(" ", "_").replace("-", "_")
+
+
+def _policies():
+    """(member name, value) of each policy: the header's names (meshfix_policy_string), the one table
+    of them; their count is what meshfix_policy_from_string answers for a name that is none."""
+    return [(_member(_policy_string(i).decode()), i) for i in range(_policy_from_string(None))]
+
+
+Policy = enum.IntEnum("Policy", _policies(), module=__name__)
+Policy.__doc__ = "meshfix_policy: AUTO, SEED, ..., NORMALS, named as the library names them."
 
 
 class Topology(enum.IntEnum):
@@ -296,7 +302,7 @@ class MeshfixError(Exception):
 def _enum(kind, value, what):
     if isinstance(value, str):
         try:
-            return kind[value.strip().upper().replace(" ", "_").replace("-", "_")]
+            return kind[_member(value)]
         except KeyError:
             raise ValueError("meshfix: unknown %s %r (one of %s)" % (
                 what, value, ", ".join(m.name.lower() for m in kind))) from None

@@ -6,6 +6,8 @@ check's reason, the weld's remap) must be the C program's, exactly."""
 import json
 import os
 import re
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -120,6 +122,46 @@ def test_result_names_are_the_headers():
     for code, (name, text) in enumerate(results):
         e = meshfix.MeshfixError(code)
         assert e.result == code and e.name == name and str(e) == "%s: %s" % (name, text)
+
+
+def test_policy_is_the_headers():
+    """Policy's members are meshfix_policy's, by name and value (MESHFIX_POLICY_COUNT left out)."""
+    with open(os.path.join(ROOT, "meshfix.h")) as f:
+        body = re.search(r"typedef enum meshfix_policy \{(.*?)\} meshfix_policy;", f.read(), re.S).group(1)
+    names = [n for n in re.findall(r"^\s*MESHFIX_POLICY_(\w+)", body, re.M) if n != "COUNT"]
+    assert [(p.name, p.value) for p in meshfix.Policy] == [(n, i) for i, n in enumerate(names)]
+    assert meshfix.Policy.NORMALS == 7 and isinstance(meshfix.Policy.UP, int)
+
+
+def test_policy_names_are_the_librarys(tmp_path):
+    """The module takes its policy names from the library it loads
+    (meshfix_policy_string): built from a header whose "up" is "upward",
+    it has Policy.UPWARD and takes policy="upward", not "up"."""
+    with open(os.path.join(ROOT, "meshfix.h")) as f:
+        text = f.read()
+    assert text.count('{"up", ') == 1
+    (tmp_path / "meshfix.h").write_text(text.replace('{"up", ', '{"upward", '))
+    # build.sh puts CFLAGS' -I before the repository's: the changed header wins
+    subprocess.run(["sh", os.path.join(ROOT, "python", "build.sh"), str(tmp_path / "module")], check=True,
+                   capture_output=True, env=dict(os.environ, CFLAGS="-O0 -I%s" % tmp_path))
+    script = """if True:
+        import numpy as np, meshfix
+        positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+        indices = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 3, 2]], np.uint32)
+        assert meshfix.Policy.UPWARD == 6 and not hasattr(meshfix.Policy, "UP"), list(meshfix.Policy)
+        assert meshfix.orient(indices, positions, policy="upward")[1].triangles_flipped > 0
+        try:
+            meshfix.orient(indices, positions, policy="up")
+        except ValueError as e:
+            assert "upward" in str(e), e
+        else:
+            raise AssertionError("policy='up' was taken")
+        print(meshfix.__file__)
+    """
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=str(tmp_path),
+                         env=dict(os.environ, PYTHONPATH=str(tmp_path / "module")))
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == str(tmp_path / "module" / "meshfix" / "__init__.py")
 
 
 def tetrahedron():
