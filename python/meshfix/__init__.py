@@ -449,7 +449,8 @@ def _positions(positions):
     return a, a.shape[0], stride, item
 
 
-def _normals(normals, what):
+def _normals(normals, what, rows):
+    """(array kept alive, stride in bytes); rows: (how many C reads, of what), None: C reads none."""
     if normals is None:
         return None, 0
     a = np.asarray(normals)
@@ -459,6 +460,10 @@ def _normals(normals, what):
         a = a.reshape(-1, 3)
     if a.ndim != 2 or a.shape[1] < 3:
         raise ValueError("meshfix: %s must be (n, 3) or (n, k >= 3), not %s" % (what, a.shape))
+    # C takes a pointer, not a length: it reads `rows` normals whatever the array holds
+    if rows is not None and a.shape[0] != rows[0]:
+        raise ValueError("meshfix: %s has %d row%s; the %d %s need %d (one each)" % (
+            what, a.shape[0], "" if a.shape[0] == 1 else "s", rows[0], rows[1], rows[0]))
     if not (a.strides[1] == 4 and a.strides[0] >= 12 and a.strides[0] % 4 == 0 and a.flags.aligned):
         a = np.ascontiguousarray(a[:, :3])
     return a, a.strides[0]
@@ -478,13 +483,14 @@ class _Call:
         "memory": ("scratch",),
     }
 
-    def __init__(self, index_size=4, position_size=4, policy=None, topology=None, weld_tolerance=0.0, up=None,
-                 seed=0, evidence=None, visibility=None, sdf=None, memory=None, threads=None):
+    def __init__(self, sizes, counts, policy=None, topology=None, weld_tolerance=0.0, up=None, seed=0,
+                 evidence=None, visibility=None, sdf=None, memory=None, threads=None):
+        """sizes: (index_size, position_size); counts: (index_count, vertex_count) of the call, the
+        normals' rows, or None for a call that reads no normals. Positional, so no keyword sets them."""
         o = self.options = _Options()
         self.keep = []
         self.error = None
-        o.index_size = index_size
-        o.position_size = position_size
+        o.index_size, o.position_size = sizes
         if policy is not None:
             o.policy = _enum(Policy, policy, "policy")
         if topology is not None:
@@ -505,8 +511,9 @@ class _Call:
         evidence = evidence or {}
         o.evidence.sigma = evidence.get("sigma", 0.0)
         o.evidence.min_confidence = evidence.get("min_confidence", 0.0)
-        for name in ("triangle_normals", "vertex_normals"):
-            array, stride = _normals(evidence.get(name), name)
+        rows = (None, None) if counts is None else ((counts[0] // 3, "triangles"), (counts[1], "vertices"))
+        for name, need in zip(("triangle_normals", "vertex_normals"), rows):
+            array, stride = _normals(evidence.get(name), name, need)
             self.keep.append(array)
             setattr(o.evidence, name, _pointer(array))
             setattr(o.evidence, name + "_stride", stride)
@@ -654,7 +661,7 @@ def _mesh(indices, positions, options):
     pos, vertex_count, stride, position_size = _positions(positions)
     if pos is None:
         vertex_count = int(idx.max()) + 1 if idx.size else 0
-    call = _Call(index_size=index_size, position_size=position_size, **options)
+    call = _Call((index_size, position_size), (idx.size, vertex_count), **options)
     return idx, pos, vertex_count, stride, call, shape, dtype
 
 
@@ -733,7 +740,7 @@ def weld(positions, tolerance=0.0, **options):
     """Merge vertices closer than tolerance (meshfix_weld): returns (remap,
     unique_count), remap[v] the lowest-index vertex v welds to (uint32)."""
     pos, vertex_count, stride, position_size = _positions(positions)
-    call = _Call(position_size=position_size, **options)
+    call = _Call((4, position_size), None, **options)  # meshfix_weld reads no normals
     remap = np.empty(vertex_count, np.uint32)
     unique = c_size_t(0)
     result = _weld(_pointer(remap), _pointer(pos), vertex_count, stride, tolerance, ctypes.byref(call.options),
@@ -745,6 +752,6 @@ def weld(positions, tolerance=0.0, **options):
 def scratch_size(index_count, vertex_count, *, index_dtype=np.uint32, position_dtype=np.float32, **options):
     """Bytes of options.memory.scratch a call with these counts and options
     needs at most (meshfix_scratch_size); pass memory=dict(scratch=buffer)."""
-    call = _Call(index_size=np.dtype(index_dtype).itemsize, position_size=np.dtype(position_dtype).itemsize,
+    call = _Call((np.dtype(index_dtype).itemsize, np.dtype(position_dtype).itemsize), (index_count, vertex_count),
                  **options)
     return _scratch_size(index_count, vertex_count, ctypes.byref(call.options))

@@ -287,6 +287,34 @@ def test_vertex_normals_and_an_interleaved_vertex_buffer(cref):
     assert np.array_equal(packed[0], strided[0]) and flat(packed[1]) == flat(strided[1])
 
 
+def test_normals_need_a_row_per_triangle_or_vertex():
+    """C reads index_count / 3 triangle normals and vertex_count vertex
+    normals: an array of any other length is refused before the call (one
+    row for 12 triangles was read past its end)."""
+    indices, positions = tetrahedron()
+    normals = np.cross(positions[indices[:, 1]] - positions[indices[:, 0]],
+                       positions[indices[:, 2]] - positions[indices[:, 0]])
+    wide = np.hstack([normals, normals])  # rows of 6 floats: a strided view goes as it is
+    for name, what in (("triangle_normals", "triangles"), ("vertex_normals", "vertices")):
+        for given in (normals[:1], normals[:3], wide[:3, :3], np.vstack([normals, normals]), normals[:0]):
+            message = r"meshfix: %s has %d rows?; the 4 %s need 4 \(one each\)" % (name, len(given), what)
+            for call in (lambda **o: meshfix.orient(indices, positions, **o),
+                         lambda **o: meshfix.orient(indices, None, **o),
+                         lambda **o: meshfix.inspect(indices, positions, **o),
+                         lambda **o: meshfix.check(indices, positions, **o),
+                         lambda **o: meshfix.scratch_size(indices.size, len(positions), **o)):
+                with pytest.raises(ValueError, match=message):
+                    call(policy="normals", evidence={name: given})
+        for given in (normals, wide[:, :3], normals.reshape(-1)):
+            report = meshfix.orient(indices, positions, policy="normals", evidence={name: given})[1]
+            assert report.evidence.patches_by_normals == 1
+    # a soup of 200,000 triangles with one normal: the rest were heap garbage ("fixed 48724 triangles")
+    soup = np.arange(600000, dtype=np.uint32).reshape(-1, 3)
+    corners = np.random.default_rng(1).random((600000, 3)).astype(np.float32)
+    with pytest.raises(ValueError, match="triangle_normals has 1 row; the 200000 triangles need 200000"):
+        meshfix.orient(soup, corners, policy="normals", evidence={"triangle_normals": normals[:1]})
+
+
 def test_threads_give_the_same_result():
     mesh = load("motor.stl")
     indices = scramble(mesh["indices"])
