@@ -42,13 +42,19 @@ memory.alloc_func/free_func are not exposed: the library uses malloc.
 
 Errors from C raise MeshfixError (.result, .name, the C text); a mesh that
 fails check() is not an error: check() returns a false Check with the
-reason in .text.
+reason in .text. A value its C field cannot hold (an integer out of the
+field's range or not whole, a finite number beyond float's) is refused
+before the call, from check() too: MeshfixError with the library's
+MESHFIX_ERROR_INVALID_ARGUMENT and .option naming it. Values the field
+holds (NaN, rays above the library's limit) go to C for it to judge.
 """
 
 import ctypes
 import dataclasses
 import enum
 import glob
+import math
+import operator
 import os
 import sys
 from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c_float, c_int, c_long,
@@ -291,22 +297,65 @@ def _result_name_of(result, unknown):
 
 
 class MeshfixError(Exception):
-    """A meshfix_result other than MESHFIX_OK: .result (int), .name, and the C text as the message."""
+    """A meshfix_result other than MESHFIX_OK: .result (int), .name, and the C text as the message.
 
-    def __init__(self, result):
+    .option names the option (or argument) the binding refused before the call because its C field
+    cannot hold the value, with the result the library gives an option out of range; None when the
+    library itself refused."""
+
+    def __init__(self, result, option=None, why=None):
         self.result = int(result)
         self.name = _result_name_of(self.result, "MESHFIX_ERROR")
-        super().__init__("%s: %s" % (self.name, _result_string(self.result).decode()))
+        self.option = option
+        message = "%s: %s" % (self.name, _result_string(self.result).decode())
+        super().__init__(message if option is None else "%s (%s %s)" % (message, option, why))
 
 
 def _enum(kind, value, what):
+    """A member's name to its value; any other value as it is, for the C field it goes to to check."""
     if isinstance(value, str):
         try:
             return kind[_member(value)]
         except KeyError:
             raise ValueError("meshfix: unknown %s %r (one of %s)" % (
                 what, value, ", ".join(m.name.lower() for m in kind))) from None
-    return int(value)
+    return value
+
+
+_C_TYPE_NAMES = {c_size_t: "size_t", c_uint: "unsigned int", c_int: "int", c_float: "float"}
+
+
+def _refused(what, value, why):
+    """The library's MESHFIX_ERROR_INVALID_ARGUMENT (an option out of range), naming the one refused."""
+    return MeshfixError(_RESULT_CODES["MESHFIX_ERROR_INVALID_ARGUMENT"], what, "= %r %s" % (value, why))
+
+
+def _c_value(ctype, value, what):
+    """value as a C `ctype` holds it, or refused where ctypes would change it silently: an integer
+    wrapped to the field's width or cut from a float, a finite number beyond float's range made
+    infinite. NaN and infinity are floats: they go as they are, for the library to take or refuse."""
+    if ctype is c_float:
+        try:
+            x = float(value) if hasattr(value, "__float__") else None  # not from a string
+        except OverflowError:  # an integer beyond any double
+            raise _refused(what, value, "does not fit a float") from None
+        if x is None:
+            raise _refused(what, value, "is not a number")
+        if math.isfinite(x) and not math.isfinite(c_float(x).value):
+            raise _refused(what, value, "does not fit a float")
+        return x
+    try:
+        n = operator.index(value)
+    except TypeError:
+        raise _refused(what, value, "is not an integer (%s)" % _C_TYPE_NAMES[ctype]) from None
+    if ctype(n).value != n:
+        raise _refused(what, value, "does not fit %s" % _C_TYPE_NAMES[ctype])
+    return n
+
+
+def _set(struct, field, value, what):
+    """struct.field = value, checked against the field's C type (_c_value)."""
+    setattr(struct, field, _c_value(dict(struct._fields_)[field], value, what))
 
 
 # ---- the report, as dataclasses built from the C structs' fields ----
@@ -492,16 +541,16 @@ class _Call:
         self.error = None
         o.index_size, o.position_size = sizes
         if policy is not None:
-            o.policy = _enum(Policy, policy, "policy")
+            _set(o, "policy", _enum(Policy, policy, "policy"), "policy")
         if topology is not None:
-            o.topology = _enum(Topology, topology, "topology")
-        o.weld_tolerance = weld_tolerance
+            _set(o, "topology", _enum(Topology, topology, "topology"), "topology")
+        _set(o, "weld_tolerance", weld_tolerance, "weld_tolerance")
         if up is not None:
-            up = [float(x) for x in up]
+            up = list(up)
             if len(up) != 3:
                 raise ValueError("meshfix: up must be three numbers")
-            o.up[:] = up
-        o.seed = seed
+            o.up[:] = [_c_value(c_float, x, "up[%d]" % i) for i, x in enumerate(up)]
+        _set(o, "seed", seed, "seed")
         for group, given in (("evidence", evidence), ("visibility", visibility), ("sdf", sdf),
                              ("memory", memory)):
             unknown = set(given or {}) - set(self._GROUPS[group])
@@ -509,8 +558,8 @@ class _Call:
                 raise TypeError("meshfix: unknown %s option(s) %s (known: %s)" % (
                     group, ", ".join(sorted(unknown)), ", ".join(self._GROUPS[group])))
         evidence = evidence or {}
-        o.evidence.sigma = evidence.get("sigma", 0.0)
-        o.evidence.min_confidence = evidence.get("min_confidence", 0.0)
+        for name in ("sigma", "min_confidence"):
+            _set(o.evidence, name, evidence.get(name, 0.0), "evidence." + name)
         rows = (None, None) if counts is None else ((counts[0] // 3, "triangles"), (counts[1], "vertices"))
         for name, need in zip(("triangle_normals", "vertex_normals"), rows):
             array, stride = _normals(evidence.get(name), name, need)
@@ -520,7 +569,7 @@ class _Call:
         visibility = visibility or {}
         for name, _ in _VisibilityOptions._fields_:
             if name in visibility:
-                setattr(o.visibility, name, visibility[name])
+                _set(o.visibility, name, visibility[name], "visibility." + name)
         if sdf:
             self._sdf(o.sdf, sdf)
         if memory and memory.get("scratch") is not None:
@@ -558,8 +607,8 @@ class _Call:
         if gradient is not None:
             s.gradient = _SDF_GRADIENT(call_gradient)
             self.keep.append(s.gradient)
-        s.step = sdf.get("step", 0.0)
-        s.mode = _enum(SdfMode, sdf.get("mode", 0), "sdf mode")
+        _set(s, "step", sdf.get("step", 0.0), "sdf.step")
+        _set(s, "mode", _enum(SdfMode, sdf.get("mode", 0), "sdf mode"), "sdf.mode")
 
     def _parallel(self, o, threads):
         from concurrent.futures import ThreadPoolExecutor
@@ -709,12 +758,12 @@ def inspect(indices, positions=None, *, outputs=False, **options):
 def _requirements(requirements):
     if isinstance(requirements, str):
         requirements = requirements.replace("|", ",").replace("+", ",").split(",")
-    if isinstance(requirements, (list, tuple, set, frozenset)):
-        bits = 0
-        for r in requirements:
-            bits |= _enum(Requirement, r, "requirement") if isinstance(r, str) else int(r)
-        return bits
-    return int(requirements)
+    if not isinstance(requirements, (list, tuple, set, frozenset)):
+        requirements = [requirements]
+    bits = 0
+    for r in requirements:
+        bits |= _c_value(c_uint, _enum(Requirement, r, "requirement"), "requirements")
+    return bits
 
 
 def check(indices, positions=None, requirements="consistent", **options):
@@ -740,6 +789,7 @@ def weld(positions, tolerance=0.0, **options):
     """Merge vertices closer than tolerance (meshfix_weld): returns (remap,
     unique_count), remap[v] the lowest-index vertex v welds to (uint32)."""
     pos, vertex_count, stride, position_size = _positions(positions)
+    tolerance = _c_value(c_float, tolerance, "tolerance")
     call = _Call((4, position_size), None, **options)  # meshfix_weld reads no normals
     remap = np.empty(vertex_count, np.uint32)
     unique = c_size_t(0)
@@ -752,6 +802,8 @@ def weld(positions, tolerance=0.0, **options):
 def scratch_size(index_count, vertex_count, *, index_dtype=np.uint32, position_dtype=np.float32, **options):
     """Bytes of options.memory.scratch a call with these counts and options
     needs at most (meshfix_scratch_size); pass memory=dict(scratch=buffer)."""
+    index_count = _c_value(c_size_t, index_count, "index_count")
+    vertex_count = _c_value(c_size_t, vertex_count, "vertex_count")
     call = _Call((np.dtype(index_dtype).itemsize, np.dtype(position_dtype).itemsize), (index_count, vertex_count),
                  **options)
     return _scratch_size(index_count, vertex_count, ctypes.byref(call.options))

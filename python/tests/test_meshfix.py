@@ -345,6 +345,62 @@ def test_options_reach_c():
         meshfix.orient(indices, mesh["positions"], policy="sideways")
 
 
+def test_options_that_do_not_fit_their_c_field_are_refused():
+    """ctypes wraps an integer to its field's width and makes a finite
+    float beyond float's range infinite, silently; the binding refuses such
+    a value with the library's MESHFIX_ERROR_INVALID_ARGUMENT, naming it."""
+    indices, positions = tetrahedron()
+    text = dict(header_list("MESHFIX_RESULT_LIST"))["MESHFIX_ERROR_INVALID_ARGUMENT"]
+    calls = (lambda **o: meshfix.orient(indices, positions, **o), lambda **o: meshfix.inspect(indices, positions, **o),
+             lambda **o: meshfix.check(indices, positions, **o), lambda **o: meshfix.weld(positions, **o),
+             lambda **o: meshfix.scratch_size(indices.size, len(positions), **o))
+    refused = [
+        ("visibility.rays", {"visibility": {"rays": 2 ** 64 + 100}}), ("visibility.rays", {"visibility": {"rays": -1}}),
+        ("visibility.rays", {"visibility": {"rays": 100.0}}), ("visibility.rays", {"visibility": {"rays": "100"}}),
+        ("visibility.min_samples", {"visibility": {"min_samples": 2 ** 32}}),
+        ("visibility.flags", {"visibility": {"flags": -1}}), ("visibility.c0", {"visibility": {"c0": 1e39}}),
+        ("seed", {"seed": 2 ** 40}), ("seed", {"seed": -1}), ("seed", {"seed": 7.5}),
+        ("policy", {"policy": 2 ** 32 + 1}), ("policy", {"policy": 1.0}), ("topology", {"topology": -2 ** 31 - 1}),
+        ("weld_tolerance", {"weld_tolerance": -1e39}), ("up[2]", {"up": (0, 0, 1e300)}),
+        ("evidence.sigma", {"evidence": {"sigma": 10 ** 400}}), ("evidence.min_confidence",
+                                                                  {"evidence": {"min_confidence": "0.5"}}),
+        ("sdf.step", {"sdf": {"step": 3.5e38}}), ("sdf.mode", {"sdf": {"mode": 2 ** 31}}),
+    ]
+    for option, options in refused:
+        for call in calls:
+            with pytest.raises(meshfix.MeshfixError) as e:
+                call(**options)
+            assert e.value.result == 1 and e.value.name == "MESHFIX_ERROR_INVALID_ARGUMENT", option
+            assert e.value.option == option
+            assert str(e.value).startswith("MESHFIX_ERROR_INVALID_ARGUMENT: %s (%s " % (text, option)), str(e.value)
+    # the C arguments beside the options
+    for option, call in (("tolerance", lambda: meshfix.weld(positions, 1e39)),
+                         ("index_count", lambda: meshfix.scratch_size(-12, 4)),
+                         ("index_count", lambda: meshfix.scratch_size(2 ** 64 + 12, 4)),
+                         ("vertex_count", lambda: meshfix.scratch_size(12, 2 ** 64 + 4)),
+                         ("requirements", lambda: meshfix.check(indices, positions, 2 ** 32 + 1)),
+                         ("requirements", lambda: meshfix.check(indices, positions, ["closed", 1.0]))):
+        with pytest.raises(meshfix.MeshfixError) as e:
+            call()
+        assert e.value.name == "MESHFIX_ERROR_INVALID_ARGUMENT" and e.value.option == option
+    # what the C field holds goes to the library as it is, whether it takes it or not
+    for options in ({"visibility": {"rays": 2 ** 24 + 1}}, {"visibility": {"min_samples": 65537}},
+                    {"policy": -1}, {"policy": 2 ** 31 - 1}, {"up": (0, 0, float("nan"))},
+                    {"evidence": {"sigma": float("inf")}}, {"weld_tolerance": float("nan")}):
+        with pytest.raises(meshfix.MeshfixError) as e:
+            meshfix.orient(indices, positions, **options)
+        assert e.value.option is None and str(e.value) == "MESHFIX_ERROR_INVALID_ARGUMENT: " + text
+    with pytest.raises(meshfix.MeshfixError) as e:
+        meshfix.weld(positions, float("nan"))
+    assert e.value.option is None and e.value.name == "MESHFIX_ERROR_INVALID_ARGUMENT"
+    for options in ({"visibility": {"rays": 2 ** 24, "min_samples": np.uint32(65536), "flags": True}},
+                    {"seed": 2 ** 32 - 1, "policy": np.int64(5)}, {"seed": np.uint64(7), "up": np.array([0, 0, 2])},
+                    {"evidence": {"sigma": 1, "min_confidence": np.float64(0.5)}, "weld_tolerance": 1e-45}):
+        assert meshfix.orient(indices, positions, **options)[1].triangles_flipped == 1
+    rays = meshfix.orient(indices, positions, policy="visibility", visibility={"rays": 1000})[1].evidence.rays_cast
+    assert rays == 1000
+
+
 def test_sdf_policy_calls_python():
     """A unit cube with half its faces turned, by the SDF of a box: outward."""
     mesh = load("cube.ply")
