@@ -615,16 +615,31 @@ class _Call:
         pool = ThreadPoolExecutor(max_workers=threads)
         self.pool = pool
 
+        def run(task, context, lo, hi):
+            for i in range(lo, hi):
+                task(context, i)  # a call into C: ctypes lets go of the GIL
+
         def parallel_for(task, context, count, _user):
-            try:
-                # each task(context, i) is a call into C: ctypes lets go of the GIL
-                chunk = max(1, count // (4 * threads))
-                jobs = [pool.submit(lambda lo, hi: [task(context, i) for i in range(lo, hi)], lo,
-                                    min(count, lo + chunk)) for lo in range(0, count, chunk)]
-                for job in jobs:
-                    job.result()
-            except BaseException as e:
-                self.error = self.error or e
+            # C reads what the tasks wrote once this returns, and frees the memory they write: so
+            # whatever goes wrong (the pool refuses a chunk, Ctrl-C while waiting), every task has
+            # run and none is running when it returns; the error is raised after C returns
+            chunk = max(1, count // (4 * threads))
+            jobs = []
+            for lo in range(0, count, chunk):
+                try:
+                    jobs.append(pool.submit(run, task, context, lo, min(count, lo + chunk)))
+                except BaseException as e:
+                    self.error = self.error or e
+                    run(task, context, lo, min(count, lo + chunk))
+            for job in jobs:
+                while True:
+                    try:
+                        job.result()
+                        break
+                    except BaseException as e:
+                        self.error = self.error or e
+                        if job.done():
+                            break
 
         o.parallel_for = _PARALLEL_FOR(parallel_for)
         self.keep.append(o.parallel_for)

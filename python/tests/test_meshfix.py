@@ -325,6 +325,52 @@ def test_threads_give_the_same_result():
         assert flat(one[1]) == flat(many[1])
 
 
+def test_threads_every_task_ends_before_c_goes_on(monkeypatch):
+    """options.parallel_for returns to C only when every task has run and
+    none is running, even when the pool refuses a chunk: C then reads what
+    the tasks wrote and frees the memory they write. The pool's error is
+    raised after C returns. (A pool whose chunks take 0.2 s and which
+    refuses all from the third, and meshfix_orient watched as it returns.)"""
+    import concurrent.futures
+    import threading
+    import time
+    mesh = load("motor.stl")
+    indices = scramble(mesh["indices"])
+    lock = threading.Lock()
+    state = {"submitted": 0, "pending": 0, "pending_when_c_returned": None}
+
+    class RefusingPool(concurrent.futures.ThreadPoolExecutor):
+        def submit(self, fn, *args):
+            state["submitted"] += 1
+            if state["submitted"] >= 3:
+                raise RuntimeError("the pool refuses a chunk")
+
+            def slow():
+                time.sleep(0.2)
+                try:
+                    return fn(*args)
+                finally:
+                    with lock:
+                        state["pending"] -= 1
+            with lock:
+                state["pending"] += 1
+            return super().submit(slow)
+
+    orient_c = meshfix._orient
+
+    def watched(*args):
+        result = orient_c(*args)
+        with lock:
+            state["pending_when_c_returned"] = state["pending"]
+        return result
+
+    monkeypatch.setattr(concurrent.futures, "ThreadPoolExecutor", RefusingPool)
+    monkeypatch.setattr(meshfix, "_orient", watched)
+    with pytest.raises(RuntimeError, match="the pool refuses a chunk"):
+        meshfix.orient(indices, mesh["positions"], threads=2)
+    assert state["submitted"] > 3 and state["pending_when_c_returned"] == 0
+
+
 def test_options_reach_c():
     mesh = load("sphereWithHole.stl")
     indices = scramble(mesh["indices"])
