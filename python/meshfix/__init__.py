@@ -312,7 +312,7 @@ class MeshfixError(Exception):
 
 
 def _enum(kind, value, what):
-    """A member's name to its value; any other value as it is, for the C field it goes to to check."""
+    """A member's name to its value; any other value as given: the C field it is set in checks it (_set)."""
     if isinstance(value, str):
         try:
             return kind[_member(value)]
@@ -336,7 +336,7 @@ def _c_value(ctype, value, what):
     infinite. NaN and infinity are floats: they go as they are, for the library to take or refuse."""
     if ctype is c_float:
         try:
-            x = float(value) if hasattr(value, "__float__") else None  # not from a string
+            x = float(value) if hasattr(value, "__float__") else None  # float() would parse a string
         except OverflowError:  # an integer beyond any double
             raise _refused(what, value, "does not fit a float") from None
         if x is None:
