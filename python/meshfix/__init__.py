@@ -42,13 +42,19 @@ memory.alloc_func/free_func are not exposed: the library uses malloc.
 
 Errors from C raise MeshfixError (.result, .name, the C text); a mesh that
 fails check() is not an error: check() returns a false Check with the
-reason in .text.
+reason in .text. A value its C field cannot hold (an integer out of the
+field's range or not whole, a finite number beyond float's) is refused
+before the call, from check() too: MeshfixError with the library's
+MESHFIX_ERROR_INVALID_ARGUMENT and .option naming it. Values the field
+holds (NaN, rays above the library's limit) go to C for it to judge.
 """
 
 import ctypes
 import dataclasses
 import enum
 import glob
+import math
+import operator
 import os
 import sys
 from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c_float, c_int, c_long,
@@ -215,19 +221,26 @@ _weld = _declare("meshfix_weld", c_int, [c_void_p, c_void_p, c_size_t, c_size_t,
 _scratch_size = _declare("meshfix_scratch_size", c_size_t, [c_size_t, c_size_t, POINTER(_Options)])
 _result_string = _declare("meshfix_result_string", c_char_p, [c_int])
 _verdict_string = _declare("meshfix_verdict_string", c_char_p, [c_int])
+_result_name = _declare("meshfix_python_result_name", c_char_p, [c_int])
+_policy_string = _declare("meshfix_policy_string", c_char_p, [c_int])
+_policy_from_string = _declare("meshfix_policy_from_string", c_int, [c_char_p])
 
 # ---- enums ----
 
 
-class Policy(enum.IntEnum):
-    AUTO = 0
-    SEED = 1
-    MAJORITY = 2
-    OUTWARD = 3
-    SDF = 4
-    VISIBILITY = 5
-    UP = 6
-    NORMALS = 7
+def _member(name):
+    """A name as an enum member's: "per triangle", "Per-Triangle" -> PER_TRIANGLE."""
+    return name.strip().upper().replace(" ", "_").replace("-", "_")
+
+
+def _policies():
+    """(member name, value) of each policy: the header's names (meshfix_policy_string), the one table
+    of them; their count is what meshfix_policy_from_string answers for a name that is none."""
+    return [(_member(_policy_string(i).decode()), i) for i in range(_policy_from_string(None))]
+
+
+Policy = enum.IntEnum("Policy", _policies(), module=__name__)
+Policy.__doc__ = "meshfix_policy: AUTO, SEED, ..., NORMALS, named as the library names them."
 
 
 class Topology(enum.IntEnum):
@@ -265,28 +278,84 @@ class Requirement(enum.IntFlag):
 VISIBILITY_COHERENCE_ONLY = 1
 VISIBILITY_ONLY = 2
 
-_RESULT_NAMES = ["MESHFIX_OK", "MESHFIX_ERROR_INVALID_ARGUMENT", "MESHFIX_ERROR_NOT_TRIANGLES",
-                 "MESHFIX_ERROR_INDEX_OUT_OF_RANGE", "MESHFIX_ERROR_TOO_LARGE", "MESHFIX_ERROR_POSITIONS_REQUIRED",
-                 "MESHFIX_ERROR_SCRATCH_TOO_SMALL", "MESHFIX_ERROR_OUT_OF_MEMORY", "MESHFIX_ERROR_NON_FINITE"]
+
+def _result_names():
+    """The result codes' names, MESHFIX_OK first: the header's MESHFIX_RESULT_LIST as the library has
+    it, so a code added there is named here without a copy of the list to fall behind."""
+    names = []
+    while _result_name(len(names)) is not None:
+        names.append(_result_name(len(names)).decode())
+    return names
+
+
+_RESULT_NAMES = _result_names()
+_RESULT_CODES = {name: code for code, name in enumerate(_RESULT_NAMES)}
+
+
+def _result_name_of(result, unknown):
+    return _RESULT_NAMES[result] if 0 <= result < len(_RESULT_NAMES) else unknown
 
 
 class MeshfixError(Exception):
-    """A meshfix_result other than MESHFIX_OK: .result (int), .name, and the C text as the message."""
+    """A meshfix_result other than MESHFIX_OK: .result (int), .name, and the C text as the message.
 
-    def __init__(self, result):
+    .option names the option (or argument) the binding refused before the call because its C field
+    cannot hold the value, with the result the library gives an option out of range; None when the
+    library itself refused."""
+
+    def __init__(self, result, option=None, why=None):
         self.result = int(result)
-        self.name = _RESULT_NAMES[self.result] if 0 <= self.result < len(_RESULT_NAMES) else "MESHFIX_ERROR"
-        super().__init__("%s: %s" % (self.name, _result_string(self.result).decode()))
+        self.name = _result_name_of(self.result, "MESHFIX_ERROR")
+        self.option = option
+        message = "%s: %s" % (self.name, _result_string(self.result).decode())
+        super().__init__(message if option is None else "%s (%s %s)" % (message, option, why))
 
 
 def _enum(kind, value, what):
+    """A member's name to its value; any other value as given: the C field it is set in checks it (_set)."""
     if isinstance(value, str):
         try:
-            return kind[value.strip().upper().replace(" ", "_").replace("-", "_")]
+            return kind[_member(value)]
         except KeyError:
             raise ValueError("meshfix: unknown %s %r (one of %s)" % (
                 what, value, ", ".join(m.name.lower() for m in kind))) from None
-    return int(value)
+    return value
+
+
+_C_TYPE_NAMES = {c_size_t: "size_t", c_uint: "unsigned int", c_int: "int", c_float: "float"}
+
+
+def _refused(what, value, why):
+    """The library's MESHFIX_ERROR_INVALID_ARGUMENT (an option out of range), naming the one refused."""
+    return MeshfixError(_RESULT_CODES["MESHFIX_ERROR_INVALID_ARGUMENT"], what, "= %r %s" % (value, why))
+
+
+def _c_value(ctype, value, what):
+    """value as a C `ctype` holds it, or refused where ctypes would change it silently: an integer
+    wrapped to the field's width or cut from a float, a finite number beyond float's range made
+    infinite. NaN and infinity are floats: they go as they are, for the library to take or refuse."""
+    if ctype is c_float:
+        try:
+            x = float(value) if hasattr(value, "__float__") else None  # float() would parse a string
+        except OverflowError:  # an integer beyond any double
+            raise _refused(what, value, "does not fit a float") from None
+        if x is None:
+            raise _refused(what, value, "is not a number")
+        if math.isfinite(x) and not math.isfinite(c_float(x).value):
+            raise _refused(what, value, "does not fit a float")
+        return x
+    try:
+        n = operator.index(value)
+    except TypeError:
+        raise _refused(what, value, "is not an integer (%s)" % _C_TYPE_NAMES[ctype]) from None
+    if ctype(n).value != n:
+        raise _refused(what, value, "does not fit %s" % _C_TYPE_NAMES[ctype])
+    return n
+
+
+def _set(struct, field, value, what):
+    """struct.field = value, checked against the field's C type (_c_value)."""
+    setattr(struct, field, _c_value(dict(struct._fields_)[field], value, what))
 
 
 # ---- the report, as dataclasses built from the C structs' fields ----
@@ -391,7 +460,7 @@ def _indices(indices):
         pass  # as they are: index_size 2 or 4
     elif a.dtype.kind in "iu":  # int64 (NumPy's default), int32, ...: a checked copy
         if a.size and (a.min() < 0 or a.max() > 0xFFFFFFFF):
-            raise MeshfixError(3)
+            raise MeshfixError(_RESULT_CODES["MESHFIX_ERROR_INDEX_OUT_OF_RANGE"])
         a = a.astype(np.uint32)
     else:
         raise TypeError("meshfix: indices must be an integer array (uint16 or uint32 go to C as they are), "
@@ -429,7 +498,8 @@ def _positions(positions):
     return a, a.shape[0], stride, item
 
 
-def _normals(normals, what):
+def _normals(normals, what, rows):
+    """(array kept alive, stride in bytes); rows: (how many C reads, of what), None: C reads none."""
     if normals is None:
         return None, 0
     a = np.asarray(normals)
@@ -439,6 +509,10 @@ def _normals(normals, what):
         a = a.reshape(-1, 3)
     if a.ndim != 2 or a.shape[1] < 3:
         raise ValueError("meshfix: %s must be (n, 3) or (n, k >= 3), not %s" % (what, a.shape))
+    # C takes a pointer, not a length: it reads `rows` normals whatever the array holds
+    if rows is not None and a.shape[0] != rows[0]:
+        raise ValueError("meshfix: %s has %d row%s; the %d %s need %d (one each)" % (
+            what, a.shape[0], "" if a.shape[0] == 1 else "s", rows[0], rows[1], rows[0]))
     if not (a.strides[1] == 4 and a.strides[0] >= 12 and a.strides[0] % 4 == 0 and a.flags.aligned):
         a = np.ascontiguousarray(a[:, :3])
     return a, a.strides[0]
@@ -458,24 +532,25 @@ class _Call:
         "memory": ("scratch",),
     }
 
-    def __init__(self, index_size=4, position_size=4, policy=None, topology=None, weld_tolerance=0.0, up=None,
-                 seed=0, evidence=None, visibility=None, sdf=None, memory=None, threads=None):
+    def __init__(self, sizes, counts, policy=None, topology=None, weld_tolerance=0.0, up=None, seed=0,
+                 evidence=None, visibility=None, sdf=None, memory=None, threads=None):
+        """sizes: (index_size, position_size); counts: (index_count, vertex_count) of the call, the
+        normals' rows, or None for a call that reads no normals. Positional, so no keyword sets them."""
         o = self.options = _Options()
         self.keep = []
         self.error = None
-        o.index_size = index_size
-        o.position_size = position_size
+        o.index_size, o.position_size = sizes
         if policy is not None:
-            o.policy = _enum(Policy, policy, "policy")
+            _set(o, "policy", _enum(Policy, policy, "policy"), "policy")
         if topology is not None:
-            o.topology = _enum(Topology, topology, "topology")
-        o.weld_tolerance = weld_tolerance
+            _set(o, "topology", _enum(Topology, topology, "topology"), "topology")
+        _set(o, "weld_tolerance", weld_tolerance, "weld_tolerance")
         if up is not None:
-            up = [float(x) for x in up]
+            up = list(up)
             if len(up) != 3:
                 raise ValueError("meshfix: up must be three numbers")
-            o.up[:] = up
-        o.seed = seed
+            o.up[:] = [_c_value(c_float, x, "up[%d]" % i) for i, x in enumerate(up)]
+        _set(o, "seed", seed, "seed")
         for group, given in (("evidence", evidence), ("visibility", visibility), ("sdf", sdf),
                              ("memory", memory)):
             unknown = set(given or {}) - set(self._GROUPS[group])
@@ -483,17 +558,18 @@ class _Call:
                 raise TypeError("meshfix: unknown %s option(s) %s (known: %s)" % (
                     group, ", ".join(sorted(unknown)), ", ".join(self._GROUPS[group])))
         evidence = evidence or {}
-        o.evidence.sigma = evidence.get("sigma", 0.0)
-        o.evidence.min_confidence = evidence.get("min_confidence", 0.0)
-        for name in ("triangle_normals", "vertex_normals"):
-            array, stride = _normals(evidence.get(name), name)
+        for name in ("sigma", "min_confidence"):
+            _set(o.evidence, name, evidence.get(name, 0.0), "evidence." + name)
+        rows = (None, None) if counts is None else ((counts[0] // 3, "triangles"), (counts[1], "vertices"))
+        for name, need in zip(("triangle_normals", "vertex_normals"), rows):
+            array, stride = _normals(evidence.get(name), name, need)
             self.keep.append(array)
             setattr(o.evidence, name, _pointer(array))
             setattr(o.evidence, name + "_stride", stride)
         visibility = visibility or {}
         for name, _ in _VisibilityOptions._fields_:
             if name in visibility:
-                setattr(o.visibility, name, visibility[name])
+                _set(o.visibility, name, visibility[name], "visibility." + name)
         if sdf:
             self._sdf(o.sdf, sdf)
         if memory and memory.get("scratch") is not None:
@@ -531,24 +607,39 @@ class _Call:
         if gradient is not None:
             s.gradient = _SDF_GRADIENT(call_gradient)
             self.keep.append(s.gradient)
-        s.step = sdf.get("step", 0.0)
-        s.mode = _enum(SdfMode, sdf.get("mode", 0), "sdf mode")
+        _set(s, "step", sdf.get("step", 0.0), "sdf.step")
+        _set(s, "mode", _enum(SdfMode, sdf.get("mode", 0), "sdf mode"), "sdf.mode")
 
     def _parallel(self, o, threads):
         from concurrent.futures import ThreadPoolExecutor
         pool = ThreadPoolExecutor(max_workers=threads)
         self.pool = pool
 
+        def run(task, context, lo, hi):
+            for i in range(lo, hi):
+                task(context, i)  # a call into C: ctypes lets go of the GIL
+
         def parallel_for(task, context, count, _user):
-            try:
-                # each task(context, i) is a call into C: ctypes lets go of the GIL
-                chunk = max(1, count // (4 * threads))
-                jobs = [pool.submit(lambda lo, hi: [task(context, i) for i in range(lo, hi)], lo,
-                                    min(count, lo + chunk)) for lo in range(0, count, chunk)]
-                for job in jobs:
-                    job.result()
-            except BaseException as e:
-                self.error = self.error or e
+            # C reads what the tasks wrote once this returns, and frees the memory they write: so
+            # whatever goes wrong (the pool refuses a chunk, Ctrl-C while waiting), every task has
+            # run and none is running when it returns; the error is raised after C returns
+            chunk = max(1, count // (4 * threads))
+            jobs = []
+            for lo in range(0, count, chunk):
+                try:
+                    jobs.append(pool.submit(run, task, context, lo, min(count, lo + chunk)))
+                except BaseException as e:
+                    self.error = self.error or e
+                    run(task, context, lo, min(count, lo + chunk))
+            for job in jobs:
+                while True:
+                    try:
+                        job.result()
+                        break
+                    except BaseException as e:
+                        self.error = self.error or e
+                        if job.done():
+                            break
 
         o.parallel_for = _PARALLEL_FOR(parallel_for)
         self.keep.append(o.parallel_for)
@@ -634,7 +725,7 @@ def _mesh(indices, positions, options):
     pos, vertex_count, stride, position_size = _positions(positions)
     if pos is None:
         vertex_count = int(idx.max()) + 1 if idx.size else 0
-    call = _Call(index_size=index_size, position_size=position_size, **options)
+    call = _Call((index_size, position_size), (idx.size, vertex_count), **options)
     return idx, pos, vertex_count, stride, call, shape, dtype
 
 
@@ -682,12 +773,12 @@ def inspect(indices, positions=None, *, outputs=False, **options):
 def _requirements(requirements):
     if isinstance(requirements, str):
         requirements = requirements.replace("|", ",").replace("+", ",").split(",")
-    if isinstance(requirements, (list, tuple, set, frozenset)):
-        bits = 0
-        for r in requirements:
-            bits |= _enum(Requirement, r, "requirement") if isinstance(r, str) else int(r)
-        return bits
-    return int(requirements)
+    if not isinstance(requirements, (list, tuple, set, frozenset)):
+        requirements = [requirements]
+    bits = 0
+    for r in requirements:
+        bits |= _c_value(c_uint, _enum(Requirement, r, "requirement"), "requirements")
+    return bits
 
 
 def check(indices, positions=None, requirements="consistent", **options):
@@ -706,15 +797,15 @@ def check(indices, positions=None, requirements="consistent", **options):
                  triangle=None if failure.triangle == none else failure.triangle,
                  edge=None if edge == (0xFFFFFFFF, 0xFFFFFFFF) else edge,
                  text=failure.text.decode(),
-                 result=_RESULT_NAMES[failure.result] if 0 <= failure.result < len(_RESULT_NAMES) else
-                 str(failure.result))
+                 result=_result_name_of(failure.result, str(failure.result)))
 
 
 def weld(positions, tolerance=0.0, **options):
     """Merge vertices closer than tolerance (meshfix_weld): returns (remap,
     unique_count), remap[v] the lowest-index vertex v welds to (uint32)."""
     pos, vertex_count, stride, position_size = _positions(positions)
-    call = _Call(position_size=position_size, **options)
+    tolerance = _c_value(c_float, tolerance, "tolerance")
+    call = _Call((4, position_size), None, **options)  # meshfix_weld reads no normals
     remap = np.empty(vertex_count, np.uint32)
     unique = c_size_t(0)
     result = _weld(_pointer(remap), _pointer(pos), vertex_count, stride, tolerance, ctypes.byref(call.options),
@@ -726,6 +817,8 @@ def weld(positions, tolerance=0.0, **options):
 def scratch_size(index_count, vertex_count, *, index_dtype=np.uint32, position_dtype=np.float32, **options):
     """Bytes of options.memory.scratch a call with these counts and options
     needs at most (meshfix_scratch_size); pass memory=dict(scratch=buffer)."""
-    call = _Call(index_size=np.dtype(index_dtype).itemsize, position_size=np.dtype(position_dtype).itemsize,
+    index_count = _c_value(c_size_t, index_count, "index_count")
+    vertex_count = _c_value(c_size_t, vertex_count, "vertex_count")
+    call = _Call((np.dtype(index_dtype).itemsize, np.dtype(position_dtype).itemsize), (index_count, vertex_count),
                  **options)
     return _scratch_size(index_count, vertex_count, ctypes.byref(call.options))

@@ -2,7 +2,8 @@
    implementation, its public functions exported, and the layout of the
    public structs (meshfix_python_layout), which meshfix/__init__.py
    compares with its ctypes mirror at import so a changed header fails
-   loudly instead of reading the wrong bytes. No Python headers needed. */
+   loudly instead of reading the wrong bytes, and the names of the result
+   codes (meshfix_python_result_name). No Python headers needed. */
 #if defined(_WIN32)
 #define MESHFIX_API __declspec(dllexport)
 #elif defined(__GNUC__) || defined(__clang__)
@@ -161,4 +162,17 @@ MESHFIX_API size_t meshfix_python_layout(char *buffer, size_t size)
         length += n;
     }
     return length;
+}
+
+/* The name of a meshfix_result ("MESHFIX_OK", ...), from the header's own
+   MESHFIX_RESULT_LIST; NULL past the last code. The module names the codes
+   from this, so a code added to the header is named without a copy of the
+   list to keep up. */
+MESHFIX_API const char *meshfix_python_result_name(int result);
+MESHFIX_API const char *meshfix_python_result_name(int result)
+{
+#define MESHFIX_PY_RESULT_NAME(name, text) #name,
+    static const char *const names[] = {MESHFIX_RESULT_LIST(MESHFIX_PY_RESULT_NAME) NULL};
+#undef MESHFIX_PY_RESULT_NAME
+    return result >= 0 && result < (int)MESHFIX_RESULT_COUNT ? names[result] : NULL;
 }

@@ -6,6 +6,8 @@ check's reason, the weld's remap) must be the C program's, exactly."""
 import json
 import os
 import re
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -104,6 +106,62 @@ def test_version_is_the_headers():
         text = f.read()
     parts = [re.search(r"#define MESHFIX_VERSION_%s (\d+)" % p, text).group(1) for p in ("MAJOR", "MINOR", "PATCH")]
     assert meshfix.__version__ == ".".join(parts)
+
+
+def header_list(macro):
+    """(name, text) of each X(name, "text") in one of meshfix.h's X-macro lists."""
+    with open(os.path.join(ROOT, "meshfix.h")) as f:
+        body = re.search(r"#define %s\(X\)((?:.*\\\n)*.*)" % macro, f.read()).group(1)
+    return re.findall(r'X\((\w+), "((?:[^"\\]|\\.)*)"\)', body)
+
+
+def test_result_names_are_the_headers():
+    """Every code of MESHFIX_RESULT_LIST has its name and the library's text."""
+    results = header_list("MESHFIX_RESULT_LIST")
+    assert ("MESHFIX_ERROR_NORMALS_REQUIRED", results[-1][1]) == results[-1]
+    for code, (name, text) in enumerate(results):
+        e = meshfix.MeshfixError(code)
+        assert e.result == code and e.name == name and str(e) == "%s: %s" % (name, text)
+
+
+def test_policy_is_the_headers():
+    """Policy's members are meshfix_policy's, by name and value (MESHFIX_POLICY_COUNT left out)."""
+    with open(os.path.join(ROOT, "meshfix.h")) as f:
+        body = re.search(r"typedef enum meshfix_policy \{(.*?)\} meshfix_policy;", f.read(), re.S).group(1)
+    names = [n for n in re.findall(r"^\s*MESHFIX_POLICY_(\w+)", body, re.M) if n != "COUNT"]
+    assert [(p.name, p.value) for p in meshfix.Policy] == [(n, i) for i, n in enumerate(names)]
+    assert meshfix.Policy.NORMALS == 7 and isinstance(meshfix.Policy.UP, int)
+
+
+def test_policy_names_are_the_librarys(tmp_path):
+    """The module takes its policy names from the library it loads
+    (meshfix_policy_string): built from a header whose "up" is "upward",
+    it has Policy.UPWARD and takes policy="upward", not "up"."""
+    with open(os.path.join(ROOT, "meshfix.h")) as f:
+        text = f.read()
+    assert text.count('{"up", ') == 1
+    (tmp_path / "meshfix.h").write_text(text.replace('{"up", ', '{"upward", '))
+    # build.sh puts CFLAGS' -I before the repository's: the changed header wins
+    subprocess.run(["sh", os.path.join(ROOT, "python", "build.sh"), str(tmp_path / "module")], check=True,
+                   capture_output=True, env=dict(os.environ, CFLAGS="-O0 -I%s" % tmp_path))
+    script = """if True:
+        import numpy as np, meshfix
+        positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+        indices = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 3, 2]], np.uint32)
+        assert meshfix.Policy.UPWARD == 6 and not hasattr(meshfix.Policy, "UP"), list(meshfix.Policy)
+        assert meshfix.orient(indices, positions, policy="upward")[1].triangles_flipped > 0
+        try:
+            meshfix.orient(indices, positions, policy="up")
+        except ValueError as e:
+            assert "upward" in str(e), e
+        else:
+            raise AssertionError("policy='up' was taken")
+        print(meshfix.__file__)
+    """
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=str(tmp_path),
+                         env=dict(os.environ, PYTHONPATH=str(tmp_path / "module")))
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == str(tmp_path / "module" / "meshfix" / "__init__.py")
 
 
 def tetrahedron():
@@ -229,6 +287,34 @@ def test_vertex_normals_and_an_interleaved_vertex_buffer(cref):
     assert np.array_equal(packed[0], strided[0]) and flat(packed[1]) == flat(strided[1])
 
 
+def test_normals_need_a_row_per_triangle_or_vertex():
+    """C reads index_count / 3 triangle normals and vertex_count vertex
+    normals: an array of any other length is refused before the call (one
+    row for 12 triangles was read past its end)."""
+    indices, positions = tetrahedron()
+    normals = np.cross(positions[indices[:, 1]] - positions[indices[:, 0]],
+                       positions[indices[:, 2]] - positions[indices[:, 0]])
+    wide = np.hstack([normals, normals])  # rows of 6 floats: a strided view goes as it is
+    for name, what in (("triangle_normals", "triangles"), ("vertex_normals", "vertices")):
+        for given in (normals[:1], normals[:3], wide[:3, :3], np.vstack([normals, normals]), normals[:0]):
+            message = r"meshfix: %s has %d rows?; the 4 %s need 4 \(one each\)" % (name, len(given), what)
+            for call in (lambda **o: meshfix.orient(indices, positions, **o),
+                         lambda **o: meshfix.orient(indices, None, **o),
+                         lambda **o: meshfix.inspect(indices, positions, **o),
+                         lambda **o: meshfix.check(indices, positions, **o),
+                         lambda **o: meshfix.scratch_size(indices.size, len(positions), **o)):
+                with pytest.raises(ValueError, match=message):
+                    call(policy="normals", evidence={name: given})
+        for given in (normals, wide[:, :3], normals.reshape(-1)):
+            report = meshfix.orient(indices, positions, policy="normals", evidence={name: given})[1]
+            assert report.evidence.patches_by_normals == 1
+    # a soup of 200,000 triangles with one normal: the rest were heap garbage ("fixed 48724 triangles")
+    soup = np.arange(600000, dtype=np.uint32).reshape(-1, 3)
+    corners = np.random.default_rng(1).random((600000, 3)).astype(np.float32)
+    with pytest.raises(ValueError, match="triangle_normals has 1 row; the 200000 triangles need 200000"):
+        meshfix.orient(soup, corners, policy="normals", evidence={"triangle_normals": normals[:1]})
+
+
 def test_threads_give_the_same_result():
     mesh = load("motor.stl")
     indices = scramble(mesh["indices"])
@@ -237,6 +323,52 @@ def test_threads_give_the_same_result():
         many = meshfix.orient(indices, mesh["positions"], policy=policy, threads=2)
         assert np.array_equal(one[0], many[0])
         assert flat(one[1]) == flat(many[1])
+
+
+def test_threads_every_task_ends_before_c_goes_on(monkeypatch):
+    """options.parallel_for returns to C only when every task has run and
+    none is running, even when the pool refuses a chunk: C then reads what
+    the tasks wrote and frees the memory they write. The pool's error is
+    raised after C returns. (A pool whose chunks take 0.2 s and which
+    refuses all from the third, and meshfix_orient watched as it returns.)"""
+    import concurrent.futures
+    import threading
+    import time
+    mesh = load("motor.stl")
+    indices = scramble(mesh["indices"])
+    lock = threading.Lock()
+    state = {"submitted": 0, "pending": 0, "pending_when_c_returned": None}
+
+    class RefusingPool(concurrent.futures.ThreadPoolExecutor):
+        def submit(self, fn, *args):
+            state["submitted"] += 1
+            if state["submitted"] >= 3:
+                raise RuntimeError("the pool refuses a chunk")
+
+            def slow():
+                time.sleep(0.2)
+                try:
+                    return fn(*args)
+                finally:
+                    with lock:
+                        state["pending"] -= 1
+            with lock:
+                state["pending"] += 1
+            return super().submit(slow)
+
+    orient_c = meshfix._orient
+
+    def watched(*args):
+        result = orient_c(*args)
+        with lock:
+            state["pending_when_c_returned"] = state["pending"]
+        return result
+
+    monkeypatch.setattr(concurrent.futures, "ThreadPoolExecutor", RefusingPool)
+    monkeypatch.setattr(meshfix, "_orient", watched)
+    with pytest.raises(RuntimeError, match="the pool refuses a chunk"):
+        meshfix.orient(indices, mesh["positions"], threads=2)
+    assert state["submitted"] > 3 and state["pending_when_c_returned"] == 0
 
 
 def test_options_reach_c():
@@ -257,6 +389,62 @@ def test_options_reach_c():
         meshfix.orient(indices, mesh["positions"], visibility={"raise": 1})
     with pytest.raises(ValueError):
         meshfix.orient(indices, mesh["positions"], policy="sideways")
+
+
+def test_options_that_do_not_fit_their_c_field_are_refused():
+    """ctypes wraps an integer to its field's width and makes a finite
+    float beyond float's range infinite, silently; the binding refuses such
+    a value with the library's MESHFIX_ERROR_INVALID_ARGUMENT, naming it."""
+    indices, positions = tetrahedron()
+    text = dict(header_list("MESHFIX_RESULT_LIST"))["MESHFIX_ERROR_INVALID_ARGUMENT"]
+    calls = (lambda **o: meshfix.orient(indices, positions, **o), lambda **o: meshfix.inspect(indices, positions, **o),
+             lambda **o: meshfix.check(indices, positions, **o), lambda **o: meshfix.weld(positions, **o),
+             lambda **o: meshfix.scratch_size(indices.size, len(positions), **o))
+    refused = [
+        ("visibility.rays", {"visibility": {"rays": 2 ** 64 + 100}}), ("visibility.rays", {"visibility": {"rays": -1}}),
+        ("visibility.rays", {"visibility": {"rays": 100.0}}), ("visibility.rays", {"visibility": {"rays": "100"}}),
+        ("visibility.min_samples", {"visibility": {"min_samples": 2 ** 32}}),
+        ("visibility.flags", {"visibility": {"flags": -1}}), ("visibility.c0", {"visibility": {"c0": 1e39}}),
+        ("seed", {"seed": 2 ** 40}), ("seed", {"seed": -1}), ("seed", {"seed": 7.5}),
+        ("policy", {"policy": 2 ** 32 + 1}), ("policy", {"policy": 1.0}), ("topology", {"topology": -2 ** 31 - 1}),
+        ("weld_tolerance", {"weld_tolerance": -1e39}), ("up[2]", {"up": (0, 0, 1e300)}),
+        ("evidence.sigma", {"evidence": {"sigma": 10 ** 400}}), ("evidence.min_confidence",
+                                                                  {"evidence": {"min_confidence": "0.5"}}),
+        ("sdf.step", {"sdf": {"step": 3.5e38}}), ("sdf.mode", {"sdf": {"mode": 2 ** 31}}),
+    ]
+    for option, options in refused:
+        for call in calls:
+            with pytest.raises(meshfix.MeshfixError) as e:
+                call(**options)
+            assert e.value.result == 1 and e.value.name == "MESHFIX_ERROR_INVALID_ARGUMENT", option
+            assert e.value.option == option
+            assert str(e.value).startswith("MESHFIX_ERROR_INVALID_ARGUMENT: %s (%s " % (text, option)), str(e.value)
+    # the C arguments beside the options
+    for option, call in (("tolerance", lambda: meshfix.weld(positions, 1e39)),
+                         ("index_count", lambda: meshfix.scratch_size(-12, 4)),
+                         ("index_count", lambda: meshfix.scratch_size(2 ** 64 + 12, 4)),
+                         ("vertex_count", lambda: meshfix.scratch_size(12, 2 ** 64 + 4)),
+                         ("requirements", lambda: meshfix.check(indices, positions, 2 ** 32 + 1)),
+                         ("requirements", lambda: meshfix.check(indices, positions, ["closed", 1.0]))):
+        with pytest.raises(meshfix.MeshfixError) as e:
+            call()
+        assert e.value.name == "MESHFIX_ERROR_INVALID_ARGUMENT" and e.value.option == option
+    # what the C field holds goes to the library as it is, whether it takes it or not
+    for options in ({"visibility": {"rays": 2 ** 24 + 1}}, {"visibility": {"min_samples": 65537}},
+                    {"policy": -1}, {"policy": 2 ** 31 - 1}, {"up": (0, 0, float("nan"))},
+                    {"evidence": {"sigma": float("inf")}}, {"weld_tolerance": float("nan")}):
+        with pytest.raises(meshfix.MeshfixError) as e:
+            meshfix.orient(indices, positions, **options)
+        assert e.value.option is None and str(e.value) == "MESHFIX_ERROR_INVALID_ARGUMENT: " + text
+    with pytest.raises(meshfix.MeshfixError) as e:
+        meshfix.weld(positions, float("nan"))
+    assert e.value.option is None and e.value.name == "MESHFIX_ERROR_INVALID_ARGUMENT"
+    for options in ({"visibility": {"rays": 2 ** 24, "min_samples": np.uint32(65536), "flags": True}},
+                    {"seed": 2 ** 32 - 1, "policy": np.int64(5)}, {"seed": np.uint64(7), "up": np.array([0, 0, 2])},
+                    {"evidence": {"sigma": 1, "min_confidence": np.float64(0.5)}, "weld_tolerance": 1e-45}):
+        assert meshfix.orient(indices, positions, **options)[1].triangles_flipped == 1
+    rays = meshfix.orient(indices, positions, policy="visibility", visibility={"rays": 1000})[1].evidence.rays_cast
+    assert rays == 1000
 
 
 def test_sdf_policy_calls_python():
@@ -332,6 +520,20 @@ def test_errors_and_conversions():
     assert empty.size == 0 and report.verdict == meshfix.Verdict.CLEAN
     check = meshfix.check(indices, positions, ["consistent", "closed"])
     assert not check and check.requirement == meshfix.Requirement.CONSISTENT and check.triangle == 0
+
+
+def test_normals_policy_needs_positions_and_normals():
+    indices, positions = tetrahedron()
+    normals = np.cross(positions[indices[:, 1]] - positions[indices[:, 0]],
+                       positions[indices[:, 2]] - positions[indices[:, 0]])
+    texts = dict(header_list("MESHFIX_RESULT_LIST"))
+    for given, evidence, name in ((None, {"triangle_normals": normals}, "MESHFIX_ERROR_POSITIONS_REQUIRED"),
+                                  (positions, {}, "MESHFIX_ERROR_NORMALS_REQUIRED")):
+        with pytest.raises(meshfix.MeshfixError) as e:
+            meshfix.orient(indices, given, policy="normals", evidence=evidence)
+        assert e.value.name == name and str(e.value) == "%s: %s" % (name, texts[name])
+    fixed, report = meshfix.orient(indices, positions, policy="normals", evidence={"triangle_normals": -normals})
+    assert report.triangles_flipped == 3 and report.evidence.patches_by_normals == 1
 
 
 def test_many_components_all_reported():
