@@ -63,7 +63,7 @@ from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c
 import numpy as np
 
 __all__ = ["orient", "inspect", "check", "weld", "scratch_size", "summary", "Report", "MeshFacts",
-           "EvidenceCounts", "Outputs", "Check", "MeshfixError", "Policy", "Topology", "SdfMode", "Verdict",
+           "EvidenceCounts", "Outputs", "Check", "MeshfixError", "Policy", "Topology", "SdfMode", "Verdict", "Evidence",
            "Requirement", "VISIBILITY_COHERENCE_ONLY", "VISIBILITY_ONLY", "version", "__version__"]
 
 # ---- the shared library ----
@@ -130,7 +130,8 @@ class _Component(Structure):
 class _Outputs(Structure):
     _fields_ = [("flipped", c_void_p), ("patch_ids", c_void_p), ("patch_confidence", c_void_p),
                 ("patch_confidence_capacity", c_size_t), ("components", c_void_p),
-                ("components_capacity", c_size_t)]
+                ("components_capacity", c_size_t), ("patch_evidence", c_void_p),
+                ("patch_evidence_capacity", c_size_t)]
 
 
 class _MeshFacts(Structure):
@@ -264,6 +265,16 @@ class Verdict(enum.IntEnum):
 
     def __str__(self):
         return _verdict_string(int(self)).decode()
+
+
+class Evidence(enum.IntEnum):
+    """What decided a patch (meshfix_evidence; Outputs.patch_evidence)."""
+    NONE = 0
+    VOLUME = 1
+    PARITY = 2
+    VISIBILITY = 3
+    NORMALS = 4
+    POLICY = 5
 
 
 class Requirement(enum.IntFlag):
@@ -424,11 +435,13 @@ class Outputs:
 
     flipped: bool per triangle (orient); patch_ids: uint32 per triangle
     (0xFFFFFFFF: degenerate); patch_confidence: float32 per patch (orient);
+    patch_evidence: uint8 per patch, what decided it (an Evidence, orient);
     components: a structured array with meshfix_component's fields."""
     flipped: object = None
     patch_ids: object = None
     patch_confidence: object = None
     components: object = None
+    patch_evidence: object = None
 
 
 @dataclasses.dataclass
@@ -686,6 +699,10 @@ class _OutputArrays:
             self.arrays.patch_confidence = np.zeros(triangles, np.float32)
             self.o.patch_confidence = _pointer(self.arrays.patch_confidence)
             self.o.patch_confidence_capacity = triangles
+        if "patch_evidence" in wanted:
+            self.arrays.patch_evidence = np.zeros(triangles, np.uint8)
+            self.o.patch_evidence = _pointer(self.arrays.patch_evidence)
+            self.o.patch_evidence_capacity = triangles
         if "components" in wanted:
             self.arrays.components = np.zeros(component_capacity, _COMPONENT_DTYPE)
             self.o.components = _pointer(self.arrays.components)
@@ -697,6 +714,8 @@ class _OutputArrays:
             a.flipped = a.flipped.view(np.bool_)
         if a.patch_confidence is not None:
             a.patch_confidence = a.patch_confidence[:report.mesh.patches].copy()
+        if a.patch_evidence is not None:
+            a.patch_evidence = a.patch_evidence[:report.mesh.patches].copy()
         if a.components is not None:
             a.components = a.components[:report.mesh.components].copy()
         return a
@@ -732,13 +751,13 @@ def _mesh(indices, positions, options):
 def orient(indices, positions=None, *, outputs=False, **options):
     """Repair winding (meshfix_orient): returns (new_indices, report), or
     (new_indices, report, outputs) when outputs is True or names some of
-    "flipped", "patch_ids", "patch_confidence", "components".
+    "flipped", "patch_ids", "patch_confidence", "patch_evidence", "components".
 
     new_indices has the shape and dtype of `indices`; a flipped triangle
     (a, b, c) is (a, c, b) in it. Without positions, vertex_count is the
     largest index + 1 and the policy must not need them."""
     idx, pos, vertex_count, stride, call, shape, dtype = _mesh(indices, positions, options)
-    wanted = _outputs_wanted(outputs, ("flipped", "patch_ids", "patch_confidence", "components"))
+    wanted = _outputs_wanted(outputs, ("flipped", "patch_ids", "patch_confidence", "patch_evidence", "components"))
     destination = np.empty_like(idx)
     triangles = idx.size // 3
 

@@ -85,6 +85,8 @@ static const meshfix_python_line meshfix_python_lines[] = {
     MESHFIX_PY_FIELD(meshfix_outputs, patch_confidence_capacity)
     MESHFIX_PY_FIELD(meshfix_outputs, components)
     MESHFIX_PY_FIELD(meshfix_outputs, components_capacity)
+    MESHFIX_PY_FIELD(meshfix_outputs, patch_evidence)
+    MESHFIX_PY_FIELD(meshfix_outputs, patch_evidence_capacity)
     MESHFIX_PY_STRUCT(meshfix_mesh_facts)
     MESHFIX_PY_FIELD(meshfix_mesh_facts, triangles)
     MESHFIX_PY_FIELD(meshfix_mesh_facts, triangles_degenerate)

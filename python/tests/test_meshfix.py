@@ -201,6 +201,13 @@ def test_orient_as_c(cref, name, variant):
     assert np.array_equal(out.patch_ids, data[n + t:].view(np.uint32)), "patch ids differ from C's"
     assert out.flipped.sum() == report.triangles_flipped
     assert len(out.patch_confidence) == report.mesh.patches
+    # what decided each patch, counted as the report counts it
+    kinds = np.bincount(out.patch_evidence, minlength=6)
+    e = report.evidence
+    assert len(out.patch_evidence) == report.mesh.patches
+    assert (kinds[meshfix.Evidence.VOLUME], kinds[meshfix.Evidence.PARITY], kinds[meshfix.Evidence.VISIBILITY],
+            kinds[meshfix.Evidence.NORMALS], kinds[meshfix.Evidence.NONE] + kinds[meshfix.Evidence.POLICY]) == \
+        (e.patches_by_volume, e.patches_by_parity, e.patches_by_visibility, e.patches_by_normals, e.patches_kept)
     assert len(out.components) == report.mesh.components
     assert out.components["triangles"].sum() == report.mesh.triangles - report.mesh.triangles_degenerate
     if variant.startswith("scrambled") and "policy" not in options and positions is not None:
