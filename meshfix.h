@@ -2157,9 +2157,10 @@ typedef struct meshfix__node {
 typedef struct meshfix__bvh {
     meshfix__node *nodes;      /* a unit's tree from its first slot on; the top tree after the last slot */
     unsigned int *order;       /* per slot: its triangle; the slots of a unit lie together */
-    unsigned int *by_index;    /* the same triangles, each unit's in index order: the trees reorder
-                                  `order` by float arithmetic, which builds round differently, and
-                                  samples must not depend on it */
+    unsigned int *by_index;    /* the same triangles, each unit's patch by patch (the geometric stage's
+                                  order; index order as prepared): the trees reorder `order` by float
+                                  arithmetic, which builds round differently, and samples must not
+                                  depend on it */
     float *corners;            /* per slot: 9 floats, the corners in the frame */
     double *cumulative_area;   /* per entry of by_index: its unit's area up to it (sampling) */
     unsigned int *sort;        /* per slot 4: scratch of the Morton build */
@@ -3559,6 +3560,8 @@ typedef struct meshfix__geometry {
     unsigned int *patch_unit;   /* per patch */
     unsigned char *patch_turn;  /* per patch: its frame relative to its unit's */
     unsigned int *triangle_unit; /* per triangle: its unit, NONE when it has no area */
+    unsigned int *patch_first;  /* per patch: its first slot in by_index (a unit's slots lie patch by patch) */
+    unsigned int *patch_end;    /* per patch: after its last slot */
     meshfix__unit *units;
     float *unit_slots;          /* scratch for trees over units: 9 floats per unit */
     unsigned int *unit_ids;
@@ -3655,14 +3658,16 @@ MESHFIX__PRIVATE void meshfix__cumulate_areas(meshfix__geometry *g)
     }
 }
 
-/* A random point of unit u, drawn by area, the triangle it lies on, and
-   that triangle's normal in the unit's frame. */
-MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, unsigned int u, unsigned int *state,
-                                                   float point[3], double normal[3])
+/* A random point of slots [first, end) of one unit (from `unit_first`),
+   drawn by area: the triangle it lies on, and that triangle's normal in
+   its patch's consistent frame. */
+MESHFIX__PRIVATE unsigned int meshfix__sample_slots(const meshfix__geometry *g, unsigned int unit_first, unsigned int first,
+                                                   unsigned int end, unsigned int *state, float point[3], double normal[3])
 {
     const meshfix__bvh *b = &g->bvh;
-    unsigned int lo = b->unit_first[u], hi = b->unit_first[u + 1] - 1, t;
-    double target = (double)meshfix__random(state) * b->cumulative_area[hi], area;
+    unsigned int lo = first, hi = end - 1, t;
+    double below = first > unit_first ? b->cumulative_area[first - 1] : 0.0, area;
+    double target = below + (double)meshfix__random(state) * (b->cumulative_area[hi] - below);
     float s = meshfix__random(state), v = meshfix__random(state), su, corners[9];
     int k;
     while (lo < hi) {
@@ -3679,6 +3684,18 @@ MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, 
     for (k = 0; k < 3; ++k)
         point[k] = (1.0f - su) * corners[k] + su * (1.0f - v) * corners[3 + k] + su * v * corners[6 + k];
     meshfix__relative_normal(g->m, t, normal, &area);
+    return t;
+}
+
+/* A random point of unit u, drawn by area, the triangle it lies on, and
+   that triangle's normal in the unit's frame. */
+MESHFIX__PRIVATE unsigned int meshfix__sample_point(const meshfix__geometry *g, unsigned int u, unsigned int *state,
+                                                   float point[3], double normal[3])
+{
+    const meshfix__bvh *b = &g->bvh;
+    unsigned int t = meshfix__sample_slots(g, b->unit_first[u], b->unit_first[u], b->unit_first[u + 1], state, point,
+                                           normal);
+    int k;
     if (g->patch_turn[g->m->tri_patch[t]]) {
         for (k = 0; k < 3; ++k)
             normal[k] = -normal[k];
@@ -3703,6 +3720,11 @@ MESHFIX__PRIVATE void meshfix__random_direction(unsigned int *state, float d[3])
 typedef struct meshfix__votes {
     unsigned int n, plus, minus;
 } meshfix__votes;
+
+/* Samples are drawn a batch at a time, the verdict looked at between;
+   units (and patches) are measured this many to a task of parallel_for. */
+#define MESHFIX__BATCH 16
+#define MESHFIX__UNITS_PER_TASK 64
 
 MESHFIX__PRIVATE double meshfix__vote_mean(const meshfix__votes *v)
 {
@@ -3815,6 +3837,7 @@ typedef struct meshfix__pair {
     unsigned int a, b;     /* patches, a < b */
     unsigned int low, high; /* the vertices of the edge that gave it: a canonical order for sums */
     double c, length;      /* coherence, and the most it could be (c / length in [-1, 1]) */
+    double from_a, from_b; /* the length of a's edges that found their partner in b, and of b's in a */
 } meshfix__pair;
 
 typedef struct meshfix__segment {
@@ -3942,6 +3965,8 @@ MESHFIX__PRIVATE void meshfix__add_pair(meshfix__pair *pairs, size_t *count, con
     p->high = from->high;
     p->c = c;
     p->length = MESHFIX_SQRT(from->length * to->length);
+    p->from_a = from->patch == p->a ? from->length : 0.0;
+    p->from_b = from->patch == p->a ? 0.0 : from->length;
 }
 
 /* Two patches that meet at a ring no winding can make consistent (a fin
@@ -4473,8 +4498,11 @@ MESHFIX__PRIVATE void meshfix__ring_pairs(const meshfix__geometry *g, double sca
                 continue;
             if (!windable)
                 meshfix__add_veto(pairs, pair_count, &sa, &sb);
-            else if (!meshfix__stacked(&sa, &sb))
+            else if (!meshfix__stacked(&sa, &sb)) {
                 meshfix__add_pair(pairs, pair_count, &sa, &sb, angle[i]);
+                /* neighbours around an edge: each is the other's */
+                pairs[*pair_count - 1].from_a = pairs[*pair_count - 1].from_b = sa.length;
+            }
         }
     }
 }
@@ -4491,6 +4519,8 @@ MESHFIX__PRIVATE size_t meshfix__sum_pairs(meshfix__pair *pairs, meshfix__pair *
             int veto = sum->length < 0 || pairs[k].length < 0;
             sum->c = veto ? 0.0 : sum->c + pairs[k].c;
             sum->length = veto ? -1.0 : sum->length + pairs[k].length;
+            sum->from_a += pairs[k].from_a;
+            sum->from_b += pairs[k].from_b;
         } else {
             pairs[out++] = pairs[k];
         }
@@ -4573,6 +4603,12 @@ typedef struct meshfix__merge {
     unsigned char *parity;  /* frame of a node relative to its parent */
     unsigned char *turn;    /* roots: frame relative to their own patch's consistent frame */
     double *front, *back, *area; /* VISIBILITY: escape shares and area per super-patch */
+    /* AUTO, OUTWARD: what the members' own evidence says of a root's frame
+       as it is turned now, +1, -1 or 0 for nothing: `side`, whether its
+       front is outside the surface of the unit the members were measured
+       in (their crossings); `normals`, whether the caller's normals agree
+       with it. A join they contradict is refused (NULL: no anchors). */
+    signed char *side, *normals;
 } meshfix__merge;
 
 MESHFIX__PRIVATE unsigned int meshfix__merge_find(meshfix__merge *g, unsigned int p, unsigned int *parity)
@@ -4602,6 +4638,18 @@ MESHFIX__PRIVATE unsigned int meshfix__merge_turn(meshfix__merge *g, unsigned in
     return parity ^ g->turn[root];
 }
 
+/* An anchor of a root turned by `flip`, and two anchors as one: the
+   known one (they agree, or the join was refused). */
+MESHFIX__PRIVATE signed char meshfix__anchor_turned(signed char anchor, unsigned int flip)
+{
+    return (signed char)(flip ? -anchor : anchor);
+}
+
+MESHFIX__PRIVATE signed char meshfix__anchor_joined(signed char a, signed char b)
+{
+    return a != 0 ? a : b;
+}
+
 /* Joins the super-patches of A and B, turned by flip_a and flip_b. */
 MESHFIX__PRIVATE void meshfix__join(meshfix__merge *g, unsigned int a, unsigned int b, unsigned int flip_a,
                                    unsigned int flip_b)
@@ -4613,6 +4661,25 @@ MESHFIX__PRIVATE void meshfix__join(meshfix__merge *g, unsigned int a, unsigned 
     g->parity[child] = (unsigned char)(g->turn[child] ^ g->turn[root]);
     if (g->area != NULL)
         g->area[root] = g->area[a] + g->area[b];
+    if (g->side != NULL) {
+        g->side[root] = meshfix__anchor_joined(meshfix__anchor_turned(g->side[a], flip_a),
+                                               meshfix__anchor_turned(g->side[b], flip_b));
+        g->normals[root] = meshfix__anchor_joined(meshfix__anchor_turned(g->normals[a], flip_a),
+                                                  meshfix__anchor_turned(g->normals[b], flip_b));
+    }
+}
+
+/* Whether the members' own evidence forbids joining roots a and b with b
+   turned by `flip`: both know their side, or both have clear normals, and
+   the turned ones disagree. */
+MESHFIX__PRIVATE int meshfix__anchors_conflict(const meshfix__merge *g, unsigned int a, unsigned int b, unsigned int flip)
+{
+    signed char sb, nb;
+    if (g->side == NULL)
+        return 0;
+    sb = meshfix__anchor_turned(g->side[b], flip);
+    nb = meshfix__anchor_turned(g->normals[b], flip);
+    return (g->side[a] != 0 && sb != 0 && g->side[a] != sb) || (g->normals[a] != 0 && nb != 0 && g->normals[a] != nb);
 }
 
 /* The coherence of a pair between the super-patches as they are turned
@@ -4628,18 +4695,30 @@ MESHFIX__PRIVATE double meshfix__pair_coherence(meshfix__merge *g, const meshfix
 
 /* AUTO and OUTWARD: coherence alone joins, strongest pairs first, the
    pairs whose edges run closely along each other (|c| / l above 0.9:
-   within a few degrees, across a gap small next to the edges). The rule
-   does not look at how the input is wound, so the units and their
-   members' relative turns are the same for any winding of the input, and
-   a second repair finds what the first left. Returns the joins. */
+   within a few degrees, across a gap small next to the edges) and are
+   paired both ways (the edges of each that found the other as their
+   partner at least half as long as the other's: a seam of one surface is
+   matched from both sides, where a part touching another finds edges
+   whose own partners lie elsewhere). The rule does not look at how the
+   input is wound, so the units and their members' relative turns are the
+   same for any winding of the input, and a second repair finds what the
+   first left. Returns the joins. */
 #define MESHFIX__JOIN_STRENGTH 0.9
+#define MESHFIX__BOTH_WAYS 0.5
+
+MESHFIX__PRIVATE int meshfix__paired_both_ways(const meshfix__pair *p)
+{
+    double least = p->from_a < p->from_b ? p->from_a : p->from_b, most = p->from_a < p->from_b ? p->from_b : p->from_a;
+    return least >= MESHFIX__BOTH_WAYS * most && most > 0;
+}
 MESHFIX__PRIVATE size_t meshfix__merge_by_coherence(meshfix__merge *g, const meshfix__pair *pairs, size_t count)
 {
     size_t i, joins = 0;
     for (i = 0; i < count; ++i) {
         unsigned int a, b;
         double c = meshfix__pair_coherence(g, &pairs[i], &a, &b);
-        if (a == b || !(pairs[i].length > 0) || MESHFIX_FABS(c) <= MESHFIX__JOIN_STRENGTH * pairs[i].length)
+        if (a == b || !(pairs[i].length > 0) || MESHFIX_FABS(c) <= MESHFIX__JOIN_STRENGTH * pairs[i].length ||
+            !meshfix__paired_both_ways(&pairs[i]) || meshfix__anchors_conflict(g, a, b, c < 0))
             continue;
         meshfix__join(g, a, b, 0, c < 0);
         joins++;
@@ -4716,14 +4795,33 @@ MESHFIX__PRIVATE int meshfix__merge_borodin(meshfix__merge *g, const meshfix__pa
     return 1;
 }
 
+/* Every patch its own super-patch, no anchor. */
+MESHFIX__PRIVATE void meshfix__reset_merge(meshfix__merge *merge, unsigned int patches)
+{
+    unsigned int p;
+    for (p = 0; p < patches; ++p) {
+        merge->parent[p] = p;
+        merge->parity[p] = merge->turn[p] = 0;
+    }
+    if (merge->side != NULL) {
+        MESHFIX_MEMSET(merge->side, 0, patches);
+        MESHFIX_MEMSET(merge->normals, 0, patches);
+    }
+}
+
 MESHFIX__PRIVATE int meshfix__alloc_merge(meshfix__geometry *g, meshfix__merge *merge, int with_visibility)
 {
     size_t patches = g->m->patch_count;
-    unsigned int p;
     MESHFIX_MEMSET(merge, 0, sizeof(*merge));
     merge->parent = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
     merge->parity = (unsigned char *)meshfix__take(&g->arena, patches, 1);
     merge->turn = (unsigned char *)meshfix__take(&g->arena, patches, 1);
+    if (!with_visibility) {
+        merge->side = (signed char *)meshfix__take(&g->arena, patches, 1);
+        merge->normals = (signed char *)meshfix__take(&g->arena, patches, 1);
+        if (!merge->side || !merge->normals)
+            return 0;
+    }
     if (with_visibility) {
         merge->front = (double *)meshfix__take(&g->arena, patches, sizeof(double));
         merge->back = (double *)meshfix__take(&g->arena, patches, sizeof(double));
@@ -4733,10 +4831,7 @@ MESHFIX__PRIVATE int meshfix__alloc_merge(meshfix__geometry *g, meshfix__merge *
     }
     if (!merge->parent || !merge->parity || !merge->turn)
         return 0;
-    for (p = 0; p < patches; ++p) {
-        merge->parent[p] = p;
-        merge->parity[p] = merge->turn[p] = 0;
-    }
+    meshfix__reset_merge(merge, (unsigned int)patches);
     return 1;
 }
 
@@ -4883,6 +4978,149 @@ MESHFIX__PRIVATE void meshfix__sum_units(meshfix__geometry *g)
     }
 }
 
+/* ===== >>members ===== */
+
+/* A unit must be one part. Coherence joins patches whose boundary edges
+   run side by side, and their relative turn is evidence; but the parts of
+   an assembly touch (a tower stands on its podium, a washer lies on the
+   end of a tube), their edges run side by side too, and a join across them
+   turns one part against the other: the unit's volume, or its majority,
+   then turns a correct part over. So where a unit turned some of its
+   members against the others, every member is asked on its own whether
+   its front, as given, faces out of the unit's surface or into it: the
+   parity of its rays' crossings of that surface, both ways, which does not
+   depend on how anything is wound. The joins are then made again,
+   strongest first, and a join that would put two members whose sides are
+   known on opposite sides of their unit is refused. Clear normals of the
+   caller's on a patch anchor it from the start (meshfix__anchor_normals). */
+
+#define MESHFIX__STREAM_MEMBER 6
+#define MESHFIX__MEMBER_SAMPLES 64 /* at most, per member */
+#define MESHFIX__SIDE_CLEAR 0.5    /* a side is known when the mean's bound nearest 0 is this far from it */
+
+/* One sample of member p of unit u: +1 when its front is outside the
+   unit's surface and its back inside, -1 the other way round, 0 when both
+   sides agree (an open surface, a ray through a gap). */
+MESHFIX__PRIVATE int meshfix__member_vote(const meshfix__geometry *g, unsigned int p, unsigned int u, unsigned int index)
+{
+    unsigned int state = meshfix__stream(g, p, MESHFIX__STREAM_MEMBER, index), t, side;
+    float point[3], d[3], back[3];
+    double n[3];
+    int inside[2];
+    meshfix__ray ray;
+    t = meshfix__sample_slots(g, g->bvh.unit_first[u], g->patch_first[p], g->patch_end[p], &state, point, n);
+    meshfix__random_direction(&state, d);
+    back[0] = -d[0], back[1] = -d[1], back[2] = -d[2];
+    for (side = 0; side < 2; ++side) {
+        meshfix__setup_ray(&ray, point, side ? back : d, g->t_min, 1e30f);
+        inside[side] = (int)(meshfix__crossings_of(g, &ray, &u, 1, t) & 1u);
+    }
+    if (n[0] * (double)d[0] + n[1] * (double)d[1] + n[2] * (double)d[2] >= 0)
+        return meshfix__side_vote(inside[0], inside[1]);
+    return meshfix__side_vote(inside[1], inside[0]);
+}
+
+/* The side of member p's front, in its consistent frame: +1 out of its
+   unit's surface, -1 into it, 0 when its crossings do not tell; samples a
+   batch at a time until that is settled. *samples gets their number. */
+MESHFIX__PRIVATE signed char meshfix__member_side(const meshfix__geometry *g, unsigned int p, unsigned int *samples)
+{
+    meshfix__votes votes;
+    unsigned int i, u = g->patch_unit[p];
+    double mean = 0, error = 1;
+    MESHFIX_MEMSET(&votes, 0, sizeof(votes));
+    for (i = 0; i < MESHFIX__MEMBER_SAMPLES; ++i) {
+        meshfix__add_vote(&votes, meshfix__member_vote(g, p, u, i));
+        if ((i + 1) % MESHFIX__BATCH != 0)
+            continue;
+        mean = MESHFIX_FABS(meshfix__vote_mean(&votes));
+        error = meshfix__vote_error(&votes);
+        if (mean - g->sigma * error >= MESHFIX__SIDE_CLEAR || mean + g->sigma * error < MESHFIX__SIDE_CLEAR)
+            break;
+    }
+    *samples = votes.n;
+    if (!(mean - g->sigma * error >= MESHFIX__SIDE_CLEAR))
+        return 0;
+    return (signed char)(meshfix__vote_mean(&votes) > 0 ? 1 : -1);
+}
+
+typedef struct meshfix__member_task {
+    const meshfix__geometry *g;
+    const unsigned char *mixed; /* per unit: some members turned against others */
+    signed char *sides;         /* per patch */
+    unsigned int *samples;      /* per patch */
+} meshfix__member_task;
+
+MESHFIX__PRIVATE void meshfix__member_chunk(void *context, size_t chunk)
+{
+    const meshfix__member_task *task = (const meshfix__member_task *)context;
+    const meshfix__geometry *g = task->g;
+    size_t p, end = (chunk + 1) * MESHFIX__UNITS_PER_TASK;
+    for (p = chunk * MESHFIX__UNITS_PER_TASK; p < end && p < g->m->patch_count; ++p) {
+        task->sides[p] = 0;
+        task->samples[p] = 0;
+        if (task->mixed[g->patch_unit[p]] && g->patch_first[p] < g->patch_end[p] &&
+            g->bvh.unit_root[g->patch_unit[p]] != MESHFIX__NONE)
+            task->sides[p] = meshfix__member_side(g, (unsigned int)p, &task->samples[p]);
+    }
+}
+
+/* The sides of the members of every unit that turned some of them
+   against others (sides[p] 0 elsewhere); returns 0 when there is none,
+   and adds the rays cast to *rays. `mixed` is scratch of a byte per unit. */
+MESHFIX__PRIVATE int meshfix__measure_members(const meshfix__geometry *g, unsigned char *mixed, signed char *sides,
+                                              unsigned int *samples, size_t *rays)
+{
+    const meshfix__mesh *m = g->m;
+    meshfix__member_task task;
+    unsigned int p, any = 0;
+    size_t chunks = (m->patch_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK, c;
+    MESHFIX_MEMSET(mixed, 0, g->unit_count);
+    for (p = 0; p < m->patch_count; ++p) {
+        mixed[g->patch_unit[p]] |= g->patch_turn[p];
+        any |= g->patch_turn[p];
+    }
+    if (!any)
+        return 0;
+    task.g = g;
+    task.mixed = mixed;
+    task.sides = sides;
+    task.samples = samples;
+    if (g->o->parallel_for != NULL)
+        g->o->parallel_for(meshfix__member_chunk, &task, chunks, g->o->parallel_user);
+    else
+        for (c = 0; c < chunks; ++c)
+            meshfix__member_chunk(&task, c);
+    for (p = 0; p < m->patch_count; ++p)
+        *rays += 2 * (size_t)samples[p];
+    return 1;
+}
+
+/* Clear normals of the caller's on a patch anchor it: the mean of their
+   votes (area-weighted, in the patch's consistent frame) at least this. */
+#define MESHFIX__NORMALS_CLEAR 0.5
+
+MESHFIX__PRIVATE void meshfix__anchor_normals(const meshfix__geometry *g, meshfix__merge *merge)
+{
+    const meshfix__mesh *m = g->m;
+    unsigned int p, i;
+    if (m->options->evidence.triangle_normals == NULL && m->options->evidence.vertex_normals == NULL)
+        return;
+    for (p = 0; p < m->patch_count; ++p) {
+        double vote = 0, usable = 0, n[3], area;
+        for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
+            unsigned int t = m->queue[i];
+            meshfix__relative_normal(m, t, n, &area);
+            if (!(area > 0) || !meshfix__normal_usable(m, t))
+                continue;
+            vote += meshfix__normal_vote(m, t, n) * area;
+            usable += area;
+        }
+        if (usable > 0 && MESHFIX_FABS(vote) >= MESHFIX__NORMALS_CLEAR * usable)
+            merge->normals[p] = (signed char)(vote > 0 ? 1 : -1);
+    }
+}
+
 /* ===== >>evidence ===== */
 
 /* How much each kind of evidence counts next to the prior (the area share
@@ -4953,7 +5191,6 @@ MESHFIX__PRIVATE int meshfix__could_turn(const meshfix__unit *u, double w)
 
 /* Rays per unit: a batch at a time until the verdict is settled, at most
    a share of the budget by area (at least 4 batches, at most 4096 rays). */
-#define MESHFIX__BATCH 16
 MESHFIX__PRIVATE unsigned int meshfix__ray_cap(const meshfix__geometry *g, const meshfix__unit *u, double total_area)
 {
     const meshfix_options *o = g->o;
@@ -5153,7 +5390,6 @@ typedef struct meshfix__evidence_task {
     int phase;
 } meshfix__evidence_task;
 
-#define MESHFIX__UNITS_PER_TASK 64
 MESHFIX__PRIVATE void meshfix__evidence_chunk(void *context, size_t chunk)
 {
     const meshfix__evidence_task *task = (const meshfix__evidence_task *)context;
@@ -5409,6 +5645,26 @@ MESHFIX__PRIVATE void meshfix__apply_units(meshfix__geometry *g)
 
 /* Units known: the trees' slots, per unit, and the scratch for trees over
    units. Returns 0 when out of memory. */
+/* A unit's slots patch by patch (each patch's in its flood-fill order),
+   so that the samples of one member can be drawn from its own slots. */
+MESHFIX__PRIVATE void meshfix__slots_by_patch(meshfix__geometry *g)
+{
+    const meshfix__mesh *m = g->m;
+    meshfix__bvh *b = &g->bvh;
+    unsigned int *next = g->unit_ids, p, i, u; /* scratch until the trees over units are built */
+    for (u = 0; u < g->unit_count; ++u)
+        next[u] = b->unit_first[u];
+    for (p = 0; p < m->patch_count; ++p) {
+        u = g->patch_unit[p];
+        g->patch_first[p] = next[u];
+        for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i)
+            if (g->triangle_unit[m->queue[i]] != MESHFIX__NONE)
+                b->by_index[next[u]++] = m->queue[i];
+        g->patch_end[p] = next[u];
+    }
+    MESHFIX_MEMCPY(b->order, b->by_index, b->count * sizeof(unsigned int));
+}
+
 MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
 {
     meshfix__mesh *m = g->m;
@@ -5423,8 +5679,11 @@ MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
     g->shell_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
     if (!g->units || !g->unit_slots || !g->unit_ids || !g->shell_nodes || !g->shell_ids)
         return 0;
-    if (!meshfix__prepare_bvh(&g->bvh, m, &g->arena, g->triangle_unit, g->unit_count))
+    g->patch_first = (unsigned int *)meshfix__take(&g->arena, m->patch_count, sizeof(unsigned int));
+    g->patch_end = (unsigned int *)meshfix__take(&g->arena, m->patch_count, sizeof(unsigned int));
+    if (!g->patch_first || !g->patch_end || !meshfix__prepare_bvh(&g->bvh, m, &g->arena, g->triangle_unit, g->unit_count))
         return 0;
+    meshfix__slots_by_patch(g);
     meshfix__cumulate_areas(g);
     return 1;
 }
@@ -5436,6 +5695,55 @@ MESHFIX__PRIVATE double meshfix__total_area(const meshfix__geometry *g)
     for (u = 0; u < g->unit_count; ++u)
         total += g->units[u].area;
     return total;
+}
+
+/* AUTO and OUTWARD: the units, their slots and trees. Coherence joins
+   the patches (clear normals anchoring them); where a unit turned members
+   against each other, each member's own side of the unit's surface is
+   measured and the joins made again with those anchors; the units, slots
+   and trees are made again when that changed them. Returns 0 when out of
+   memory. */
+MESHFIX__PRIVATE int meshfix__form_units(meshfix__geometry *g, const meshfix__coherence *coherence,
+                                        meshfix__merge *merge, meshfix_report *r)
+{
+    const meshfix__mesh *m = g->m;
+    size_t patches = m->patch_count, mark, joins;
+    signed char *sides = (signed char *)meshfix__take(&g->arena, patches, 1);
+    unsigned int *samples = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
+    unsigned int *first_unit = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
+    unsigned char *mixed;
+    unsigned int p, same_units = 1;
+    if (!sides || !samples || !first_unit)
+        return 0;
+    meshfix__anchor_normals(g, merge);
+    joins = meshfix__merge_by_coherence(merge, coherence->pairs, coherence->pair_count);
+    meshfix__number_units(g, merge);
+    mark = g->arena.used;
+    if (!meshfix__prepare_units(g))
+        return 0;
+    meshfix__build_unit_trees(g);
+    mixed = (unsigned char *)g->unit_slots; /* scratch: the trees over units come later */
+    if (meshfix__measure_members(g, mixed, sides, samples, &r->evidence.rays_cast)) {
+        MESHFIX_MEMCPY(first_unit, g->patch_unit, patches * sizeof(unsigned int));
+        meshfix__reset_merge(merge, (unsigned int)patches);
+        meshfix__anchor_normals(g, merge);
+        MESHFIX_MEMCPY(merge->side, sides, patches);
+        joins = meshfix__merge_by_coherence(merge, coherence->pairs, coherence->pair_count);
+        meshfix__number_units(g, merge);
+        for (p = 0; p < patches; ++p)
+            same_units &= g->patch_unit[p] == first_unit[p];
+        /* a refused join split a unit: its slots and trees are made again
+           (they do not depend on turns: the sums, which do, come after) */
+        if (!same_units) {
+            g->arena.used = mark;
+            if (!meshfix__prepare_units(g))
+                return 0;
+            meshfix__build_unit_trees(g);
+        }
+    }
+    r->evidence.patch_pairs += coherence->pair_count;
+    r->evidence.patches_merged += joins;
+    return 1;
 }
 
 /* AUTO and OUTWARD: units by coherence; closed and nearly closed ones by
@@ -5450,12 +5758,8 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     int *net = NULL, ok = 0;
     unsigned int u;
     MESHFIX_MEMSET(&merge, 0, sizeof(merge));
-    if (!meshfix__measure_coherence(g, &coherence) || !meshfix__alloc_merge(g, &merge, 0))
-        goto done;
-    r->evidence.patch_pairs += coherence.pair_count;
-    r->evidence.patches_merged += meshfix__merge_by_coherence(&merge, coherence.pairs, coherence.pair_count);
-    meshfix__number_units(g, &merge);
-    if (!meshfix__prepare_units(g))
+    if (!meshfix__measure_coherence(g, &coherence) || !meshfix__alloc_merge(g, &merge, 0) ||
+        !meshfix__form_units(g, &coherence, &merge, r))
         goto done;
     net = (int *)meshfix__take(&g->arena, g->unit_count, sizeof(int));
     if (net == NULL)
@@ -5464,7 +5768,6 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     meshfix__sum_units(g);
     meshfix__close_units(g, &coherence, net);
     total_area = meshfix__total_area(g);
-    meshfix__build_unit_trees(g);
     meshfix__gather_evidence(g, MESHFIX__PHASE_GAPS, total_area);
     meshfix__index_shells(g);
     meshfix__gather_evidence(g, MESHFIX__PHASE_SHELLS, total_area);
@@ -5482,9 +5785,10 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
         meshfix__decide_unit(&g->units[u], g->sigma);
         r->evidence.shells_inward += x->cavity;
         r->evidence.rays_cast += x->rays;
-        MESHFIX_TRACE(("meshfix: unit %u: area %g, as given %g / %g, volume %g, closed %d, unmatched %g; "
+        MESHFIX_TRACE(("meshfix: unit %u: area %g, as given %g / %g, volume %g, closed %d, unmatched %g of %g; "
                        "evidence %d: %.3f +- %.3f x %g; turn %u, confidence %.2f%s\n",
-                       u, x->area, x->kept, x->reversed, x->volume, (int)x->closed, x->unmatched, (int)x->kind, x->mean,
+                       u, x->area, x->kept, x->reversed, x->volume, (int)x->closed, x->unmatched, x->boundary,
+                       (int)x->kind, x->mean,
                        x->error, x->weight, x->turn, (double)x->confidence, x->cavity ? ", cavity" : ""));
     }
     meshfix__apply_units(g);
@@ -5696,15 +6000,19 @@ MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *
         meshfix__add_size(&total, l, sizeof(unsigned int), &at) && meshfix__add_size(&total, l, sizeof(double), &at) &&
         meshfix__add_size(&total, meshfix__grid_buckets(b) + 1, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, b, 3 * sizeof(meshfix__cell_item), &at) &&
-        /* the merge */
+        /* the merge, its anchors; the members' sides, samples and first units */
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, 1, &at) &&
         meshfix__add_size(&total, p, 1, &at) && meshfix__add_size(&total, vis, 3 * sizeof(double), &at) &&
+        meshfix__add_size(&total, p - vis, 1, &at) && meshfix__add_size(&total, p - vis, 1, &at) &&
+        meshfix__add_size(&total, p - vis, 1, &at) && meshfix__add_size(&total, p - vis, sizeof(unsigned int), &at) &&
+        meshfix__add_size(&total, p - vis, sizeof(unsigned int), &at) &&
         /* units, the tree over shells, the nets of rings */
         meshfix__add_size(&total, p, sizeof(meshfix__unit), &at) &&
         meshfix__add_size(&total, p, 9 * sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, MESHFIX__NODE_ALIGN - 16, 1, &at) &&
         meshfix__add_size(&total, p, sizeof(meshfix__node), &at) &&
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(int), &at) &&
+        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
         /* the trees and VISIBILITY's samples */
         meshfix__add_size(&total, p + 1, sizeof(unsigned int), &at) &&
         meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&

@@ -466,18 +466,19 @@ int scene_parts(scene *s, unsigned detail)
    export gives them: boxes, L and U blocks (unions of boxes, welded where
    they meet), rows of houses that share party walls (each house its own
    closed box, wall on wall), towers standing on podiums (the tower's floor
-   on the podium's roof), all standing on a ground slab (a closed box the
-   buildings' floors rest on). Every solid faces out; none is welded to
-   another, so they touch without sharing a vertex. */
+   on the podium's roof), all standing on a ground slab (a closed box of 12
+   triangles the buildings' floors rest on). Every solid faces out; the
+   touching faces lie on each other without sharing a vertex (the sizes
+   keep their grids apart), as separately modelled objects do. */
 int scene_city(scene *s, unsigned detail)
 {
     double h = 1.0 / (detail > 0 ? detail : 1);
     unsigned lot, built = 0;
     mio_mesh g;
-    gen_aabb slab = gen_make_aabb(-0.3f, -0.3f, -0.2f, 8.8f, 7.3f, 0);
+    static const float slab_lo[3] = {-0.3f, -0.3f, -0.2f}, slab_hi[3] = {8.8f, 7.3f, 0};
     int ok;
     scene_init(s);
-    ok = scene_add(s, &g, gen_boxes(&g, &slab, 1, NULL, 0, (float)(4 * h)), "ground", 0);
+    ok = scene_add(s, &g, gen_box(&g, 1, slab_lo, slab_hi), "ground", 0);
     for (lot = 0; ok && lot < 30 && built < 26; ++lot) {
         float x = 1.5f * (float)(lot % 6), y = 1.5f * (float)(lot / 6), top = 0.4f + 0.3f * (float)((lot * 7) % 5);
         gen_aabb add[4];
@@ -486,14 +487,15 @@ int scene_city(scene *s, unsigned detail)
             continue; /* a square, a park: streets meet there */
         if (lot % 7 == 3) { /* a row of three houses, wall on wall */
             for (k = 0; ok && k < 3 && built < 26; ++k, ++built) {
-                add[0] = gen_make_aabb(x + 0.4f * (float)k, y, 0, x + 0.4f * (float)(k + 1), y + 0.8f, 0.3f + 0.1f * (float)k);
+                add[0] = gen_make_aabb(x + 0.4f * (float)k, y, 0, x + 0.4f * (float)(k + 1), y + 0.77f + 0.03f * (float)k,
+                                       0.33f + 0.09f * (float)k);
                 ok = scene_add(s, &g, gen_boxes(&g, add, 1, NULL, 0, (float)h), "house", 0);
             }
             continue;
         }
         if (lot % 4 == 1) { /* a tower on a podium */
             add[0] = gen_make_aabb(x, y, 0, x + 1.1f, y + 1.0f, 0.3f);
-            add[1] = gen_make_aabb(x + 0.3f, y + 0.2f, 0.3f, x + 0.8f, y + 0.7f, 0.3f + 2 * top);
+            add[1] = gen_make_aabb(x + 0.3137f, y + 0.2071f, 0.3f, x + 0.8137f, y + 0.7071f, 0.3f + 2 * top);
             ok = scene_add(s, &g, gen_boxes(&g, &add[0], 1, NULL, 0, (float)h), "podium", 0) &&
                  scene_add(s, &g, gen_boxes(&g, &add[1], 1, NULL, 0, (float)h), "tower", 0);
             built++;
