@@ -3539,7 +3539,7 @@ typedef struct meshfix__unit {
     float box[6];              /* in the frame */
     unsigned char closed;      /* MESHFIX__CLOSED, MESHFIX__NEARLY_CLOSED, MESHFIX__GAPPED, MESHFIX__OPEN */
     unsigned char cavity;
-    unsigned char reversed_prior; /* an open unit of a reversed scene: its majority is likely wrong */
+    unsigned char reversed_prior; /* a unit of a reversed scene: its majority is likely wrong */
     unsigned char kind;        /* a meshfix_evidence: what gave `mean` */
     double mean, error, weight; /* geometric vote for the frame's side in [-1, 1], its standard error, its weight */
     unsigned int turn;         /* the verdict: 1 turns the unit over, relative to its frame */
@@ -3838,6 +3838,7 @@ typedef struct meshfix__pair {
     unsigned int low, high; /* the vertices of the edge that gave it: a canonical order for sums */
     double c, length;      /* coherence, and the most it could be (c / length in [-1, 1]) */
     double from_a, from_b; /* the length of a's edges that found their partner in b, and of b's in a */
+    unsigned char ring;    /* every edge of it is an edge of 3+ triangles: neighbours around it, no seam */
 } meshfix__pair;
 
 typedef struct meshfix__segment {
@@ -3967,6 +3968,7 @@ MESHFIX__PRIVATE void meshfix__add_pair(meshfix__pair *pairs, size_t *count, con
     p->length = MESHFIX_SQRT(from->length * to->length);
     p->from_a = from->patch == p->a ? from->length : 0.0;
     p->from_b = from->patch == p->a ? 0.0 : from->length;
+    p->ring = 0;
 }
 
 /* Two patches that meet at a ring no winding can make consistent (a fin
@@ -4502,6 +4504,7 @@ MESHFIX__PRIVATE void meshfix__ring_pairs(const meshfix__geometry *g, double sca
                 meshfix__add_pair(pairs, pair_count, &sa, &sb, angle[i]);
                 /* neighbours around an edge: each is the other's */
                 pairs[*pair_count - 1].from_a = pairs[*pair_count - 1].from_b = sa.length;
+                pairs[*pair_count - 1].ring = 1;
             }
         }
     }
@@ -4521,6 +4524,7 @@ MESHFIX__PRIVATE size_t meshfix__sum_pairs(meshfix__pair *pairs, meshfix__pair *
             sum->length = veto ? -1.0 : sum->length + pairs[k].length;
             sum->from_a += pairs[k].from_a;
             sum->from_b += pairs[k].from_b;
+            sum->ring = (unsigned char)(sum->ring & pairs[k].ring);
         } else {
             pairs[out++] = pairs[k];
         }
@@ -4706,6 +4710,16 @@ MESHFIX__PRIVATE double meshfix__pair_coherence(meshfix__merge *g, const meshfix
 #define MESHFIX__JOIN_STRENGTH 0.9
 #define MESHFIX__BOTH_WAYS 0.5
 
+/* Around an edge of three or more triangles, the order of the faces is
+   all that relates them (a slot whose walls lie on each other, a fin, two
+   parts meeting at an edge): such a pair alone turns a member over only
+   when both sides' own crossings say where they face. */
+MESHFIX__PRIVATE int meshfix__ring_may_join(const meshfix__merge *g, const meshfix__pair *p, unsigned int a,
+                                           unsigned int b, unsigned int flip)
+{
+    return !p->ring || !flip || (g->side != NULL && g->side[a] != 0 && g->side[b] != 0);
+}
+
 MESHFIX__PRIVATE int meshfix__paired_both_ways(const meshfix__pair *p)
 {
     double least = p->from_a < p->from_b ? p->from_a : p->from_b, most = p->from_a < p->from_b ? p->from_b : p->from_a;
@@ -4718,7 +4732,8 @@ MESHFIX__PRIVATE size_t meshfix__merge_by_coherence(meshfix__merge *g, const mes
         unsigned int a, b;
         double c = meshfix__pair_coherence(g, &pairs[i], &a, &b);
         if (a == b || !(pairs[i].length > 0) || MESHFIX_FABS(c) <= MESHFIX__JOIN_STRENGTH * pairs[i].length ||
-            !meshfix__paired_both_ways(&pairs[i]) || meshfix__anchors_conflict(g, a, b, c < 0))
+            !meshfix__paired_both_ways(&pairs[i]) || !meshfix__ring_may_join(g, &pairs[i], a, b, c < 0) ||
+            meshfix__anchors_conflict(g, a, b, c < 0))
             continue;
         meshfix__join(g, a, b, 0, c < 0);
         joins++;
@@ -5221,7 +5236,9 @@ MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned in
             continue;
         u->mean = sign * meshfix__vote_mean(&votes);
         u->error = meshfix__vote_error(&votes);
-        if (!meshfix__unsettled(u, g->sigma))
+        /* unanimous votes cannot move their mean: past 8 batches more of
+           them would only settle a tie, which keeps anyway */
+        if (!meshfix__unsettled(u, g->sigma) || (i + 1 >= 8 * MESHFIX__BATCH && (votes.plus == votes.n || votes.minus == votes.n)))
             break;
     }
     u->mean = sign * meshfix__vote_mean(&votes);
@@ -5319,12 +5336,19 @@ MESHFIX__PRIVATE void meshfix__gap_evidence(const meshfix__geometry *g, unsigned
    its own crossings found outside) unless it is a cavity: inside an odd
    number of the shells around it, crossing no shell (shells that cross
    each other are separate bodies: each faces out). Its evidence is that
-   side times the nesting vote. */
+   side times the nesting vote. Under AUTO a shell inside another that is
+   wound one way throughout, as given, keeps that way: facing out (an eye
+   in a head, a sealed slot in a part) or in (a cavity), it is what its
+   author made; its nesting counts with the weight of open evidence, which
+   turns it only when the scene was reversed (its prior then counts
+   against it). A shell wound both ways as given, and every shell under
+   OUTWARD, faces as its nesting says. */
 MESHFIX__PRIVATE void meshfix__shell_evidence(const meshfix__geometry *g, unsigned int index, double total_area)
 {
     meshfix__unit *u = &g->units[index];
     unsigned int list[MESHFIX__MOST_ENCLOSERS], n = meshfix__enclosers(g, index, list);
     double side = (u->closed == MESHFIX__CLOSED ? u->volume : u->mean) > 0 ? 1.0 : -1.0, inside;
+    int authored;
     u->kind = MESHFIX_EVIDENCE_VOLUME;
     u->weight = MESHFIX__WEIGHT_STRONG;
     u->mean = side;
@@ -5332,8 +5356,9 @@ MESHFIX__PRIVATE void meshfix__shell_evidence(const meshfix__geometry *g, unsign
     if (n == 0)
         return;
     /* the nesting vote (+1 inside) turns the side around */
-    inside = meshfix__measure(g, index, u, MESHFIX_EVIDENCE_VOLUME, MESHFIX__WEIGHT_STRONG, -side, list, n,
-                              meshfix__ray_cap(g, u, total_area));
+    authored = g->m->policy == MESHFIX_POLICY_AUTO && (u->kept == 0 || u->reversed == 0);
+    inside = meshfix__measure(g, index, u, MESHFIX_EVIDENCE_VOLUME, authored ? MESHFIX__WEIGHT_WEAK : MESHFIX__WEIGHT_STRONG,
+                              -side, list, n, meshfix__ray_cap(g, u, total_area));
     /* inside: unless it crosses a shell (asked only now: it costs a ray per edge) */
     if (inside > 0 && meshfix__crosses_a_shell(g, index)) {
         inside = -1.0;
@@ -5341,6 +5366,8 @@ MESHFIX__PRIVATE void meshfix__shell_evidence(const meshfix__geometry *g, unsign
         u->error = 0.0;
     }
     u->cavity = (unsigned char)(inside - g->sigma * u->error > 0);
+    if (!u->cavity)
+        u->weight = MESHFIX__WEIGHT_STRONG; /* outside every shell: its volume, at full weight */
 }
 
 /* An open unit (AUTO): the first kind of evidence that is significant,
@@ -5499,14 +5526,14 @@ MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g
     unsigned int u, count = 0;
     for (u = 0; u < g->unit_count; ++u) {
         const meshfix__unit *x = &g->units[u];
-        int majority;
-        double low, high;
+        int majority = x->kept >= x->reversed ? 1 : -1;
         if (x->kind != MESHFIX_EVIDENCE_VOLUME || !meshfix__significant(x, g->sigma))
             continue;
-        meshfix__weigh(x, g->sigma, &low, &high, &majority);
+        /* what the geometry says (a cavity in, the rest out), against the
+           side most of it faces as given */
         count++;
         all += x->area;
-        turned += high < 0 ? x->area : 0.0;
+        turned += x->mean * majority < 0 ? x->area : 0.0;
     }
     return count >= 2 && turned >= 0.9 * all;
 }
@@ -5772,6 +5799,9 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     meshfix__index_shells(g);
     meshfix__gather_evidence(g, MESHFIX__PHASE_SHELLS, total_area);
     g->reversed_scene = m->policy == MESHFIX_POLICY_AUTO && meshfix__scene_reversed(g);
+    for (u = 0; u < g->unit_count; ++u) /* the shells of a reversed scene: their majority counts against them */
+        if (g->units[u].kind == MESHFIX_EVIDENCE_VOLUME)
+            g->units[u].reversed_prior = (unsigned char)g->reversed_scene;
     if (m->policy == MESHFIX_POLICY_AUTO) {
         for (u = 0; u < g->unit_count; ++u)
             if (g->units[u].closed == MESHFIX__OPEN && meshfix__could_turn(&g->units[u], MESHFIX__WEIGHT_WEAK))
