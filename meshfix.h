@@ -286,9 +286,10 @@ typedef struct meshfix_evidence_options {
 
 typedef struct meshfix_visibility_options {
     /* Rays per patch proportional to area, at least min_samples (default
-       16), `rays` in all (default 128 per patch, at least 65536, or 64
-       per triangle under 1024 triangles, and at most 1048576);
-       AUTO stops a patch's rays once its verdict is settled. Coherence:
+       16), `rays` in all (default 64 per triangle under 1024 triangles;
+       else for VISIBILITY 128 per patch, at least 65536, at most
+       1048576, and for AUTO and OUTWARD 1048576, which they draw on only
+       until each verdict is settled). Coherence:
        boundary edges of other patches closer than coherence_distance (of
        the longest box side, default 0.02). The paper's merge thresholds:
        c0 (default 0.5), eps (0.02), kv (1.5). */
@@ -3555,6 +3556,7 @@ typedef struct meshfix__geometry {
     unsigned int seed;
     float t_min;
     double sigma;               /* the significance rule: z of the confidence bounds */
+    size_t ray_budget;          /* meshfix__ray_budget */
     double length_unit;         /* a length in the frame, relative to the longest side: times this is raw */
     unsigned int unit_count;
     unsigned int *patch_unit;   /* per patch */
@@ -4569,7 +4571,7 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
         longest = meshfix__maxd(longest, (double)g->bvh.high[axis] - (double)g->bvh.low[axis]);
     scale = longest > 0 ? 1.0 / longest : 1.0;
     g->length_unit = (longest > 0 ? longest : 1.0) / g->bvh.scale;
-    reach = o->visibility.coherence_distance > 0 ? (double)o->visibility.coherence_distance : 0.02;
+    reach = (double)o->visibility.coherence_distance;
     for (h = 0; h < half_edges; ++h) {
         boundary += m->mate[h] == MESHFIX__NONE;
         rings += (unsigned int)meshfix__is_ring(m->mate[h]);
@@ -5204,13 +5206,11 @@ MESHFIX__PRIVATE int meshfix__could_turn(const meshfix__unit *u, double w)
     return high < 0;
 }
 
-/* Rays per unit: a batch at a time until the verdict is settled, at most
-   a share of the budget by area (at least 4 batches, at most 4096 rays). */
+/* Samples per unit: a batch at a time until the verdict is settled, at
+   most a share of the budget by area (at least 4 batches, at most 4096). */
 MESHFIX__PRIVATE unsigned int meshfix__ray_cap(const meshfix__geometry *g, const meshfix__unit *u, double total_area)
 {
-    const meshfix_options *o = g->o;
-    double budget = o->visibility.rays != 0 ? (double)o->visibility.rays : 1048576.0;
-    double share = total_area > 0 ? budget * u->area / total_area : 0.0;
+    double share = total_area > 0 ? (double)g->ray_budget * u->area / total_area : 0.0;
     share = share < 4 * MESHFIX__BATCH ? 4 * MESHFIX__BATCH : share > 4096 ? 4096 : share;
     return (unsigned int)share;
 }
@@ -5616,9 +5616,8 @@ MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, unsigned int
         u->mean = s->area > 0 ? s->sdf_vote / s->area : 0.0;
         meshfix__verdict_follow(u, sigma, 0.0);
     } else if (policy == MESHFIX_POLICY_UP) {
-        double up[3] = {0, 0, 1}, length;
-        if (o->up[0] != 0 || o->up[1] != 0 || o->up[2] != 0)
-            up[0] = (double)o->up[0], up[1] = (double)o->up[1], up[2] = (double)o->up[2];
+        double up[3], length;
+        up[0] = (double)o->up[0], up[1] = (double)o->up[1], up[2] = (double)o->up[2];
         length = MESHFIX_SQRT(meshfix__dot3(up, up));
         u->mean = s->area > 0 ? meshfix__dot3(s->normal, up) / length / s->area : 0.0;
         meshfix__verdict_follow(u, sigma, 1e-6);
@@ -5838,15 +5837,8 @@ MESHFIX__PRIVATE unsigned int meshfix__visibility_samples(const meshfix__geometr
     const meshfix_options *o = g->o;
     size_t patches = g->m->patch_count, budget, floor_count;
     double area = g->units[p].area;
-    budget = o->visibility.rays != 0 ? o->visibility.rays : patches * 128;
-    if (o->visibility.rays == 0) {
-        /* 64 a triangle is plenty for a mesh of a few: a quad casts 256
-           rays, not the 65536 of a larger mesh's floor */
-        size_t least = g->m->triangle_count < 1024 ? 64 * g->m->triangle_count : 65536;
-        budget = budget < least ? least : budget > 1048576 ? 1048576 : budget;
-    }
-    budget /= 2; /* a sample is a pair of rays */
-    floor_count = o->visibility.min_samples != 0 ? o->visibility.min_samples : 16;
+    budget = g->ray_budget / 2; /* a sample is a pair of rays */
+    floor_count = o->visibility.min_samples;
     if (floor_count > budget / patches)
         floor_count = budget / patches;
     if (!(area > 0) || g->bvh.unit_first[p] == g->bvh.unit_first[p + 1])
@@ -5943,9 +5935,9 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
     int ok = 0;
     MESHFIX_MEMSET(&merge, 0, sizeof(merge));
     MESHFIX_MEMSET(&coherence, 0, sizeof(coherence));
-    k.c0 = o->visibility.c0 > 0 ? (double)o->visibility.c0 : 0.5;
-    k.eps = o->visibility.eps > 0 ? (double)o->visibility.eps : 0.02;
-    k.kv = o->visibility.kv > 0 ? (double)o->visibility.kv : 1.5;
+    k.c0 = (double)o->visibility.c0;
+    k.eps = (double)o->visibility.eps;
+    k.kv = (double)o->visibility.kv;
     k.use_visibility = !(o->visibility.flags & MESHFIX_VISIBILITY_COHERENCE_ONLY);
     meshfix__number_units(g, NULL);
     if (!meshfix__prepare_units(g) || !meshfix__alloc_merge(g, &merge, 1))
@@ -5989,6 +5981,25 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
     ok = 1;
 done:
     return ok;
+}
+
+/* The rays a call may cast, shared by area among its units:
+   visibility.rays, or by default 64 a triangle under 1024 triangles (a
+   quad casts 128 rays, not a large mesh's floor), else VISIBILITY's 128
+   per patch (at least 65536, at most 1048576), which it spends, and for
+   AUTO and OUTWARD 1048576, which they only draw on until each unit's
+   verdict is settled: a unit that stays unsettled buys more evidence. */
+MESHFIX__PRIVATE size_t meshfix__ray_budget(const meshfix__mesh *m)
+{
+    size_t budget = m->options->visibility.rays;
+    if (budget != 0)
+        return budget;
+    if (m->triangle_count < 1024)
+        return 64 * m->triangle_count;
+    if (m->policy != MESHFIX_POLICY_VISIBILITY)
+        return 1048576;
+    budget = 128 * (size_t)m->patch_count;
+    return budget < 65536 ? 65536 : budget > 1048576 ? 1048576 : budget;
 }
 
 /* What the geometric stage needs, counted from the mesh (or, for
@@ -6069,8 +6080,9 @@ MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, meshfix__aren
     g.o = m->options;
     g.arena = *arena;
     meshfix__mark_areas(m);
-    g.seed = m->options->seed != 0 ? m->options->seed : 0x5EEDu;
-    g.sigma = m->options->evidence.sigma > 0 ? (double)m->options->evidence.sigma : 3.0;
+    g.seed = m->options->seed;
+    g.sigma = (double)m->options->evidence.sigma;
+    g.ray_budget = meshfix__ray_budget(m);
     m->confidence = (float *)meshfix__take(&g.arena, m->patch_count, sizeof(float));
     m->patch_kind = (unsigned char *)meshfix__take(&g.arena, m->patch_count, 1);
     g.patch_unit = (unsigned int *)meshfix__take(&g.arena, m->patch_count, sizeof(unsigned int));
@@ -6214,7 +6226,7 @@ MESHFIX__PRIVATE void meshfix__patch_verdict(const meshfix__mesh *m, unsigned in
                                             const meshfix__patch_sums *s, meshfix__unit *u)
 {
     const meshfix_options *o = m->options;
-    double sigma = o->evidence.sigma > 0 ? (double)o->evidence.sigma : 3.0;
+    double sigma = (double)o->evidence.sigma;
     if (m->patch_bits[p] & MESHFIX__PATCH_DECIDED) {
         meshfix__patch_unit(s, u);
         u->turn = (m->patch_bits[p] & MESHFIX__PATCH_FLIP) != 0;
@@ -6537,6 +6549,29 @@ MESHFIX__PRIVATE int meshfix__options_valid(const meshfix_options *o, int policy
            meshfix__is_fraction(o->sdf.step, 3e38f) && meshfix__is_finite_point(o->up);
 }
 
+/* Every option left 0 gets its default, in the call's own copy: the
+   stages read the options as they are. (visibility.rays 0 stays: its
+   default depends on the patches, meshfix__ray_budget.) */
+MESHFIX__PRIVATE void meshfix__fill_defaults(meshfix_options *o)
+{
+    if (o->evidence.sigma == 0)
+        o->evidence.sigma = 3.0f;
+    if (o->up[0] == 0 && o->up[1] == 0 && o->up[2] == 0)
+        o->up[2] = 1.0f;
+    if (o->seed == 0)
+        o->seed = 0x5EEDu;
+    if (o->visibility.min_samples == 0)
+        o->visibility.min_samples = 16;
+    if (o->visibility.coherence_distance == 0)
+        o->visibility.coherence_distance = 0.02f;
+    if (o->visibility.c0 == 0)
+        o->visibility.c0 = 0.5f;
+    if (o->visibility.eps == 0)
+        o->visibility.eps = 0.02f;
+    if (o->visibility.kv == 0)
+        o->visibility.kv = 1.5f;
+}
+
 MESHFIX__PRIVATE meshfix_verdict meshfix__verdict(const meshfix_report *r, int policy)
 {
     if (r->mesh.components_non_orientable != 0)
@@ -6603,6 +6638,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call, const meshfix_
         return MESHFIX_ERROR_NORMALS_REQUIRED;
     if (!meshfix__options_valid(&options, policy))
         return MESHFIX_ERROR_INVALID_ARGUMENT;
+    meshfix__fill_defaults(&options);
     MESHFIX_MEMSET(&r, 0, sizeof(r));
     r.mesh.triangles = in->index_count / 3;
     if (in->index_count == 0) {
