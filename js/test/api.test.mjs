@@ -7,7 +7,7 @@ import { createRequire } from 'node:module';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import * as esm from '../dist/meshfix.mjs';
-import { compareWithNative, failed, jsDir, random, runNative, test } from './common.mjs';
+import { bundleScope, compareWithNative, failed, headerResults, jsDir, random, runNative, test } from './common.mjs';
 
 const { ready, orient, inspect, check, weld, MeshfixError, version } = esm;
 const require = createRequire(import.meta.url);
@@ -235,6 +235,70 @@ await test('errors: the library\'s status as MeshfixError.code; bad options name
     ...throwsType(() => orient(tetraIndices(), tetraPositions, { vertexCount: 5 }), RangeError, /vertexCount 5/),
     ...throwsType(() => orient('0 1 2', tetraPositions), TypeError, /indices must be/),
 ]);
+
+// What the bundle does not export: its load-time check of the struct table, and what it made of the WebAssembly.
+const bundle = bundleScope(['parseLayout', 'layoutProblems', 'layoutText', 'load', 'USES']);
+await bundle.ready;
+const { scope } = bundle;
+const table = scope.layoutText(scope.wasm.e);
+const layoutProblems = (edit) => scope.layoutProblems(scope.parseLayout(edit(table)), scope.USES);
+const moved = (line, by) => (t) => t.replace(new RegExp(`^(${line}) (\\d+)`, 'm'), (_, head, offset) => `${head} ${+offset + by}`);
+const dropped = (line) => (t) => t.replace(new RegExp(`^${line} .*\n`, 'm'), '');
+
+await test('layout: the WebAssembly\'s table of meshfix.h\'s structs passes the load-time check', () => {
+    const problems = layoutProblems((t) => t);
+    for (const name of ['meshfix_options', 'meshfix_outputs', 'meshfix_report', 'meshfix_component', 'meshfix_check_failure'])
+        if (!(name in scope.wasm.layout.structs))
+            problems.push(`no ${name} in the table`);
+    return problems;
+});
+
+await test('layout: the check catches a wrong offset, a field left out (middle or end), a kind or a field this file uses', () => {
+    const cases = [
+        ['visibility.min_samples 4 bytes later', moved('meshfix_options visibility\\.min_samples', 4), /meshfix_options\.visibility\.min_samples is at byte 68, where C would put it .* is 64/],
+        ['seed 4 bytes earlier', moved('meshfix_options seed', -4), /meshfix_options\.seed is at byte 28/],
+        ['mesh.edges_boundary not listed', dropped('meshfix_report mesh\\.edges_boundary'), /meshfix_report\.mesh\.edges_manifold is at byte/],
+        ['signed_volume (the last field) not listed', dropped('meshfix_component signed_volume'), /meshfix_component is 56 bytes, its listed fields take 48/],
+        ['policy a float', (t) => t.replace(/^(meshfix_options policy \d+ 4 4) u/m, '$1 f'), /meshfix_options\.policy is f32, taken here as integer/],
+        ['components_capacity not listed', dropped('meshfix_outputs components_capacity'), /meshfix_outputs\.components_capacity is missing/],
+        ['a pointer of 2 bytes', (t) => t.replace(/^(meshfix_outputs flipped \d+) 4 4 p/m, '$1 2 2 p'), /meshfix_outputs\.flipped is 2 bytes of kind p/],
+        ['a struct of no size', dropped('meshfix_report -'), /meshfix_report has fields but no size/],
+    ];
+    const problems = [];
+    for (const [name, edit, expected] of cases) {
+        if (edit(table) === table)
+            problems.push(`${name}: the edit changed nothing`);
+        const found = layoutProblems(edit);
+        if (!found.some((p) => expected.test(p)))
+            problems.push(`${name}: ${found.length ? found.join('; ') : 'no problem found'}`);
+    }
+    return problems;
+});
+
+await test('layout: a table that fails the check fails the load, loudly', () => {
+    const e = scope.wasm.e;
+    const bad = moved('meshfix_report verdict', 8)(table);
+    const fake = { ...e, mfjs_layout(buffer, size) { // the real exports, the table edited
+        const bytes = new TextEncoder().encode(`${bad}\0`);
+        if (buffer !== 0)
+            new Uint8Array(e.memory.buffer, buffer, size).set(bytes.subarray(0, size));
+        return bytes.length - 1;
+    } };
+    try {
+        scope.load(fake);
+    } catch (error) {
+        return /WebAssembly's structs are not what this JavaScript reads and writes.*meshfix_report\.verdict is at byte 8/.test(error.message) ? [] : [error.message];
+    }
+    return ['load() took the edited table'];
+});
+
+await test('result codes: the JavaScript side has every one of meshfix.h\'s MESHFIX_RESULT_LIST, by value', () => {
+    const header = headerResults().map((r) => r.name);
+    const problems = scope.wasm.results.join() === header.join() ? [] : [`WebAssembly ${scope.wasm.results}, header ${header}`];
+    if (!header.includes('MESHFIX_ERROR_NORMALS_REQUIRED'))
+        problems.push('the header has no MESHFIX_ERROR_NORMALS_REQUIRED (read wrongly?)');
+    return problems;
+});
 
 await test('memory: 300 calls and a 200k-triangle mesh leave the WebAssembly heap where it was', () => {
     const big = sphere(250, 400, false);

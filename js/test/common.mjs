@@ -4,6 +4,7 @@
 // reference build and the Khronos validator.
 import { execFileSync } from 'node:child_process';
 import { readFileSync, writeFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -41,6 +42,26 @@ export async function test(name, body) {
 
 export function failed() {
     return failures;
+}
+
+// The bundle's own scope, for tests of what it does not export:
+// dist/meshfix.cjs run once more (with a WebAssembly instance of its own),
+// `names` from its top level exported beside its API as `scope`, and
+// `scope.wasm` what the load made of the WebAssembly.
+export function bundleScope(names) {
+    const source = readFileSync(join(jsDir, 'dist/meshfix.cjs'), 'utf8');
+    const module = { exports: {} };
+    const scope = `\nmodule.exports.scope = { ${names.join(', ')}, get wasm() { return wasm; } };\n`;
+    new Function('module', 'exports', 'require', source + scope)(module, module.exports, createRequire(import.meta.url));
+    return module.exports;
+}
+
+// meshfix.h's MESHFIX_RESULT_LIST, read from the header: [{ name, text }] by value.
+export function headerResults() {
+    const header = readFileSync(join(jsDir, '..', 'meshfix.h'), 'utf8');
+    const start = header.indexOf('#define MESHFIX_RESULT_LIST(X)');
+    const list = header.slice(start, header.indexOf('\n\n', start));
+    return [...list.matchAll(/X\((MESHFIX_\w+), "((?:[^"\\]|\\.)*)"\)/g)].map((m) => ({ name: m[1], text: m[2] }));
 }
 
 // mulberry32: small, seeded, the same on every machine.
