@@ -92,6 +92,8 @@ function load(e) {
         e,
         layout,
         results,
+        options: new Map(layout.structs.meshfix_options.fields.map((f) => [f.name, f])),
+        schemas: { call: optionSchema(layout, CALL_OPTIONS), weld: optionSchema(null, WELD_OPTIONS) },
     };
 }
 
@@ -130,6 +132,23 @@ function libraryError(code, detail) {
 
 function fail(status) {
     throw new MeshfixError(wasm.results[status] || `MESHFIX_RESULT_${status}`, `meshfix: ${resultText(status)}`);
+}
+
+// An option refused before the call: the library's MESHFIX_ERROR_INVALID_ARGUMENT, naming it.
+function optionError(path, problem) {
+    return libraryError('MESHFIX_ERROR_INVALID_ARGUMENT', `${path} ${problem}`);
+}
+
+function show(value) {
+    if (typeof value === 'string')
+        return JSON.stringify(value);
+    if (value === null || typeof value !== 'object' && typeof value !== 'function')
+        return String(value);
+    return Array.isArray(value) ? 'an array' : typeof value === 'function' ? 'a function' : `a ${value.constructor ? value.constructor.name : 'object'}`;
+}
+
+function own(table, key) {
+    return Object.prototype.hasOwnProperty.call(table, key);
 }
 
 // ---- memory ----
@@ -196,89 +215,176 @@ function readStruct(e, name, pointer) {
 
 // ---- options ----
 
-function pick(name, value, list) {
-    const i = list.indexOf(value);
+// How an option is taken, for those not a plain number of its C field:
+// take(value, path, field) returns the value for C (undefined: none).
+const OPTION_TAKERS = {
+    policy: takePolicy,
+    topology: (value, path) => takeName(value, path, TOPOLOGIES),
+    up: takeUp,
+    'evidence.triangleNormals': takeNormals,
+    'evidence.triangleNormalsStride': takeFloatStride,
+    'evidence.vertexNormals': takeNormals,
+    'evidence.vertexNormalsStride': takeFloatStride,
+    'visibility.flags': takeFlags,
+};
+// meshfix_options fields JavaScript does not offer: set from the arrays, or C callbacks and memory.
+const OPTIONS_INTERNAL = ['indexSize', 'positionSize', 'sdf', 'memory', 'parallelFor', 'parallelUser'];
+// JavaScript's own options, of orient, inspect and check, and of weld.
+const CALL_OPTIONS = { positionsStride: takeSize, vertexCount: takeSize, components: takeBoolean, inPlace: takeBoolean };
+const WELD_OPTIONS = { positionsStride: takeSize, vertexCount: takeSize };
+
+function takeNumber(value, path, field) {
+    if (!fieldHolds(field, value))
+        throw optionError(path, `${show(value)} is not ${fieldType(field)}, what its C field holds`);
+    return value;
+}
+
+function takeSize(value, path) {
+    return takeNumber(value, path, instance().layout.types.size_t);
+}
+
+function takeBoolean(value, path) {
+    if (typeof value !== 'boolean')
+        throw optionError(path, `${show(value)} is not true or false`);
+    return value;
+}
+
+function takeFunction(value, path) {
+    if (typeof value !== 'function')
+        throw optionError(path, `${show(value)} is not a function`);
+    return value;
+}
+
+function takeName(value, path, names) {
+    const i = typeof value === 'string' ? names.indexOf(value) : -1;
     if (i < 0)
-        throw new TypeError(`meshfix: ${name} "${value}" is not one of ${list.join(', ')}`);
+        throw optionError(path, `${show(value)} is not one of ${names.join(', ')}`);
     return i;
 }
 
-function upAxis(up) {
-    if (up === undefined || up === null)
-        return [0, 0, 0];
-    if (typeof up === 'string') {
-        if (!(up in AXES))
-            throw new TypeError(`meshfix: up "${up}" is not one of ${Object.keys(AXES).join(', ')} or [x, y, z]`);
-        return AXES[up];
-    }
-    if (up.length !== 3)
-        throw new TypeError('meshfix: up must be [x, y, z] or an axis name');
-    return [up[0], up[1], up[2]];
+function takePolicy(value, path) {
+    if (value === 'sdf')
+        throw optionError(path, '"sdf" calls a C function for the distance; it is not available from JavaScript');
+    const policy = POLICIES.indexOf(value);
+    if (typeof value !== 'string' || policy < 0)
+        throw optionError(path, `${show(value)} is not one of ${POLICIES.filter((name) => name !== 'sdf').join(', ')}`);
+    return policy;
 }
 
-function flagBits(flags, table, what) {
-    if (flags === undefined || flags === null)
-        return 0;
-    if (typeof flags === 'number')
-        return flags;
+function takeUp(value, path, field) {
+    if (typeof value === 'string') {
+        if (!own(AXES, value))
+            throw optionError(path, `${show(value)} is not one of ${Object.keys(AXES).join(', ')} or [x, y, z]`);
+        return AXES[value];
+    }
+    if (!Array.isArray(value) && !ArrayBuffer.isView(value) || value.length !== field.count)
+        throw optionError(path, `${show(value)} is not an axis name or [x, y, z]`);
+    return Array.from(value, (v, i) => takeNumber(v, `${path}[${i}]`, field));
+}
+
+function takeFlags(value, path, field) {
+    if (typeof value === 'number')
+        return takeNumber(value, path, field);
     let bits = 0;
-    for (const name of Array.isArray(flags) ? flags : [flags]) {
-        if (!(name in table))
-            throw new TypeError(`meshfix: ${what} "${name}" is not one of ${Object.keys(table).join(', ')}`);
-        bits |= table[name];
+    for (const name of Array.isArray(value) ? value : [value]) {
+        if (typeof name !== 'string' || !own(VISIBILITY_FLAGS, name))
+            throw optionError(path, `${show(name)} is not one of ${Object.keys(VISIBILITY_FLAGS).join(', ')} or a number`);
+        bits |= VISIBILITY_FLAGS[name];
     }
     return bits;
 }
 
-// Normals as float x y z, `stride` floats apart, `count` of them at least.
-function normalData(normals, stride, count, what) {
-    if (normals === null || normals === undefined)
-        return null;
-    const data = normals instanceof Float32Array ? normals : Float32Array.from(normals);
-    const step = stride === undefined ? 3 : stride;
-    if (!Number.isInteger(step) || step < 3)
-        throw new RangeError(`meshfix: ${what}Stride is counted in floats and must be at least 3`);
-    if (count > 0 && data.length < (count - 1) * step + 3)
-        throw new RangeError(`meshfix: ${what} has ${data.length} floats; ${count} normals need ${(count - 1) * step + 3}`);
-    return { data, stride: step };
+// Normals as float x y z (null: none); copied in once the count is known (writeOptions).
+function takeNormals(value, path) {
+    if (value === null)
+        return undefined;
+    if (value instanceof Float32Array)
+        return value;
+    if (!Array.isArray(value) && !ArrayBuffer.isView(value))
+        throw optionError(path, `${show(value)} is not a Float32Array or an array of numbers`);
+    return Float32Array.from(value);
 }
 
-// meshfix_options in the WebAssembly's memory, from the options as given
-// (by C path: the table says where each field is).
-function writeOptions(e, alloc, options, index, position, triangleCount) {
-    const values = { index_size: index.size, position_size: position.size, up: upAxis(options.up) };
-    const set = (path, value) => {
-        if (value !== undefined && value !== null)
-            values[path] = Number(value);
-    };
-    const evidence = options.evidence || {};
-    const visibility = options.visibility || {};
-    const policy = options.policy === undefined ? 0 : pick('policy', options.policy, POLICIES);
-    if (policy === POLICIES.indexOf('sdf'))
-        throw new TypeError('meshfix: policy "sdf" calls a C function for the distance; it is not available from JavaScript');
-    set('topology', options.topology === undefined ? 0 : pick('topology', options.topology, TOPOLOGIES));
-    set('weld_tolerance', options.weldTolerance);
-    set('policy', policy);
-    set('seed', options.seed);
-    set('evidence.sigma', evidence.sigma);
-    set('evidence.min_confidence', evidence.minConfidence);
-    const triangleNormals = normalData(evidence.triangleNormals, evidence.triangleNormalsStride, triangleCount, 'triangleNormals');
-    if (triangleNormals !== null) {
-        set('evidence.triangle_normals', copyIn(e, alloc, triangleNormals.data));
-        set('evidence.triangle_normals_stride', triangleNormals.stride * 4);
+// A stride counted in floats, into the bytes of its C field (0, as in C: 3 floats).
+function takeFloatStride(value, path, field) {
+    if (!Number.isInteger(value) || value < 0 || !fieldHolds(field, 4 * value))
+        throw optionError(path, `${show(value)} is not a count of floats whose bytes its C field holds ` +
+                                `(0 to ${Math.floor(fieldRange(field).most / 4)})`);
+    return 4 * value;
+}
+
+// The options a function takes, by path ('visibility.rays'), each with its
+// take and C field: with a layout, meshfix_options' fields by their
+// camelCase names, less the internal ones and `omit`; and `own`, taken by
+// JavaScript.
+function optionSchema(layout, own, omit) {
+    const schema = new Map();
+    const left = [...OPTIONS_INTERNAL, ...(omit || [])];
+    for (const field of layout === null ? [] : layout.structs.meshfix_options.fields) {
+        if (left.some((p) => field.name === p || field.name.startsWith(`${p}.`)))
+            continue;
+        const take = OPTION_TAKERS[field.name] || (field.kind !== 'p' && field.count === 1 ? takeNumber : null);
+        if (take !== null)
+            schema.set(field.name, { take, field });
     }
-    const vertexNormals = normalData(evidence.vertexNormals, evidence.vertexNormalsStride, position.count, 'vertexNormals');
-    if (vertexNormals !== null) {
-        set('evidence.vertex_normals', copyIn(e, alloc, vertexNormals.data));
-        set('evidence.vertex_normals_stride', vertexNormals.stride * 4);
+    for (const [path, take] of Object.entries(own))
+        schema.set(path, { take, field: null });
+    return schema;
+}
+
+// The names a schema has at one level: 'policy', ..., 'evidence', 'visibility'.
+function optionNames(schema, prefix) {
+    const names = new Set();
+    for (const path of schema.keys())
+        if (prefix === '' || path.startsWith(`${prefix}.`))
+            names.add(path.slice(prefix === '' ? 0 : prefix.length + 1).split('.')[0]);
+    return [...names];
+}
+
+// The options given, checked against a schema: a Map from path to the value
+// for C (or for this file). A name the schema does not have is refused, and
+// so is a value its C field cannot hold; undefined is as if not given.
+function takeOptions(options, schema, prefix = '', taken = new Map()) {
+    if (options === undefined || options === null && prefix === '')
+        return taken;
+    if (typeof options !== 'object' || options === null || Array.isArray(options))
+        throw optionError(prefix || 'options', `${show(options)} is not an object of options`);
+    for (const [key, value] of Object.entries(options)) {
+        const path = prefix === '' ? key : `${prefix}.${key}`;
+        const entry = key.includes('.') ? undefined : schema.get(path); // 'evidence.sigma' is no name of its own
+        if (value === undefined)
+            continue;
+        if (entry !== undefined) {
+            const v = entry.take(value, path, entry.field);
+            if (v !== undefined)
+                taken.set(path, v);
+        } else if (!key.includes('.') && optionNames(schema, path).length > 0) {
+            takeOptions(value, schema, path, taken);
+        } else {
+            throw optionError(path, `is not an option${prefix === '' ? '' : ` of ${prefix}`} (${optionNames(schema, prefix).join(', ')})`);
+        }
     }
-    set('visibility.rays', visibility.rays);
-    set('visibility.min_samples', visibility.minSamples);
-    set('visibility.coherence_distance', visibility.coherenceDistance);
-    set('visibility.c0', visibility.c0);
-    set('visibility.eps', visibility.eps);
-    set('visibility.kv', visibility.kv);
-    set('visibility.flags', flagBits(visibility.flags, VISIBILITY_FLAGS, 'visibility flag'));
+    return taken;
+}
+
+// meshfix_options in the WebAssembly's memory, from the options taken;
+// normals copied in beside them, checked against the count they cover.
+function writeOptions(e, alloc, taken, index, position, triangleCount) {
+    const values = { index_size: index.size, position_size: position.size };
+    for (const [path, value] of taken) {
+        const field = wasm.options.get(path);
+        if (field !== undefined && field.kind !== 'p')
+            values[field.path] = value;
+    }
+    for (const [path, count] of [['evidence.triangleNormals', triangleCount], ['evidence.vertexNormals', position.count]]) {
+        const normals = taken.get(path);
+        if (normals === undefined)
+            continue;
+        const step = (taken.get(`${path}Stride`) || 12) / 4;
+        if (count > 0 && normals.length < (count - 1) * step + 3)
+            throw optionError(path, `has ${normals.length} floats; ${count} normals, ${step} floats apart, need ${(count - 1) * step + 3}`);
+        values[wasm.options.get(path).path] = copyIn(e, alloc, normals);
+    }
     return writeStruct(e, alloc, 'meshfix_options', values);
 }
 
@@ -301,13 +407,11 @@ function indexData(indices) {
     throw new TypeError('meshfix: indices must be a Uint32Array, Uint16Array, Uint8Array or an array of integers');
 }
 
-// Positions (or null), their element stride and the vertex count.
-function positionData(positions, indices, options) {
-    const stride = options.positionsStride === undefined ? 3 : options.positionsStride;
-    if (!Number.isInteger(stride) || stride < 3)
-        throw new RangeError('meshfix: positionsStride is counted in elements (floats) and must be at least 3');
+// Positions (or null), their element stride as given (0: 3, as in C) and the vertex count.
+function positionData(positions, indices, taken) {
+    const stride = taken.has('positionsStride') ? taken.get('positionsStride') : 3;
+    let count = taken.get('vertexCount');
     if (positions === null || positions === undefined) {
-        let count = options.vertexCount;
         if (count === undefined) {
             count = 0;
             for (let i = 0; i < indices.length; ++i)
@@ -322,15 +426,32 @@ function positionData(positions, indices, options) {
             throw new TypeError('meshfix: positions must be a Float32Array, a Float64Array, an array of numbers or null');
         data = Float64Array.from(positions); // JavaScript numbers are doubles: nothing rounded
     }
-    const available = data.length >= 3 ? Math.floor((data.length - 3) / stride) + 1 : 0;
-    const count = options.vertexCount === undefined ? available : options.vertexCount;
-    if (!Number.isInteger(count) || count < 0 || count > available)
-        throw new RangeError(`meshfix: vertexCount ${count} needs more positions than the ${data.length} given`);
+    if (!fieldHolds(wasm.layout.types.size_t, stride * data.BYTES_PER_ELEMENT))
+        throw optionError('positionsStride', `${stride} is more bytes than the C stride holds`);
+    const step = stride || 3;
+    const available = data.length >= 3 ? Math.floor((data.length - 3) / step) + 1 : 0;
+    if (count === undefined)
+        count = available;
+    else if (count > available)
+        throw optionError('vertexCount', `${count} needs more positions than the ${data.length} given`);
     return { data, size: data.BYTES_PER_ELEMENT, stride, count };
 }
 
 function requirementBits(requirements) {
-    return flagBits(requirements, REQUIREMENTS, 'requirement');
+    if (requirements === undefined || requirements === null)
+        return 0;
+    if (typeof requirements === 'number') {
+        if (!Number.isInteger(requirements) || requirements < 0 || requirements > 0xffffffff)
+            throw new RangeError(`meshfix: requirements ${requirements} is not an unsigned 32-bit integer`);
+        return requirements;
+    }
+    let bits = 0;
+    for (const name of Array.isArray(requirements) ? requirements : [requirements]) {
+        if (typeof name !== 'string' || !own(REQUIREMENTS, name))
+            throw new TypeError(`meshfix: requirement ${show(name)} is not one of ${Object.keys(REQUIREMENTS).join(', ')}`);
+        bits |= REQUIREMENTS[name];
+    }
+    return bits;
 }
 
 function readReport(e, pointer) {
@@ -355,22 +476,22 @@ function readComponents(e, pointer, count) {
 
 // orient and inspect: one run of the library, its outputs copied out.
 function run(inspectOnly, indices, positions, options) {
-    options = options || {};
+    const taken = takeOptions(options, instance().schemas.call);
     const index = indexData(indices);
     if (index.data.length % 3 !== 0)
         throw libraryError('MESHFIX_ERROR_NOT_TRIANGLES');
-    const position = positionData(positions, index.data, options);
+    const position = positionData(positions, index.data, taken);
     const triangles = index.data.length / 3;
     return withHeap((alloc, e) => {
         const indexPointer = copyIn(e, alloc, index.data);
         const positionPointer = position.data === null ? 0 : copyIn(e, alloc, position.data);
-        const optionPointer = writeOptions(e, alloc, options, index, position, triangles);
+        const optionPointer = writeOptions(e, alloc, taken, index, position, triangles);
         const reportPointer = writeStruct(e, alloc, 'meshfix_report');
         const summaryPointer = alloc(SUMMARY_BYTES);
         const flippedPointer = inspectOnly ? 0 : alloc(triangles);
         const patchPointer = alloc(4 * triangles);
         const confidencePointer = inspectOnly ? 0 : alloc(4 * triangles);
-        const componentCapacity = options.components ? triangles : 0;
+        const componentCapacity = taken.get('components') ? triangles : 0;
         const componentPointer = componentCapacity ? alloc(wasm.layout.structs.meshfix_component.size * componentCapacity) : 0;
         const outputs = writeStruct(e, alloc, 'meshfix_outputs', {
             flipped: flippedPointer, patch_ids: patchPointer, patch_confidence: confidencePointer,
@@ -395,7 +516,7 @@ function run(inspectOnly, indices, positions, options) {
         if (!inspectOnly) {
             const fixed = copyOut(e, index.size === 4 ? Uint32Array : Uint16Array, indexPointer, index.data.length);
             let target;
-            if (options.inPlace && index.Type === indices.constructor) {
+            if (taken.get('inPlace') && index.Type === indices.constructor) {
                 indices.set(fixed);
                 target = indices;
             } else {
@@ -429,14 +550,14 @@ function inspect(indices, positions, options) {
 }
 
 function check(indices, positions, requirements, options) {
-    options = options || {};
+    const taken = takeOptions(options, instance().schemas.call);
     const index = indexData(indices);
-    const position = positionData(positions, index.data, options);
+    const position = positionData(positions, index.data, taken);
     const bits = requirementBits(requirements);
     return withHeap((alloc, e) => {
         const indexPointer = copyIn(e, alloc, index.data);
         const positionPointer = position.data === null ? 0 : copyIn(e, alloc, position.data);
-        const optionPointer = writeOptions(e, alloc, options, index, position, Math.floor(index.data.length / 3));
+        const optionPointer = writeOptions(e, alloc, taken, index, position, Math.floor(index.data.length / 3));
         const failurePointer = writeStruct(e, alloc, 'meshfix_check_failure');
         const ok = e.meshfix_check(indexPointer, index.data.length, positionPointer, position.count,
                                    position.stride * position.size, bits, optionPointer, failurePointer) !== 0;
@@ -456,8 +577,10 @@ function check(indices, positions, requirements, options) {
 }
 
 function weld(positions, tolerance, options) {
-    options = options || {};
-    const position = positionData(positions, [], options);
+    const taken = takeOptions(options, instance().schemas.weld);
+    if (tolerance !== undefined && !fieldHolds({ kind: 'f', element: 4 }, tolerance))
+        throw optionError('tolerance', `${show(tolerance)} is not a finite 32-bit float, what the C argument holds`);
+    const position = positionData(positions, [], taken);
     if (position.data === null)
         throw new TypeError('meshfix: weld needs positions');
     return withHeap((alloc, e) => {

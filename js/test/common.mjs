@@ -64,6 +64,33 @@ export function headerResults() {
     return [...list.matchAll(/X\((MESHFIX_\w+), "((?:[^"\\]|\\.)*)"\)/g)].map((m) => ({ name: m[1], text: m[2] }));
 }
 
+// The properties meshfix.d.ts declares in `export interface NAME { ... }`, as
+// paths: a property whose type is an object literal ({ ... }) by its own.
+export function declaredFields(name) {
+    const types = readFileSync(join(jsDir, 'meshfix.d.ts'), 'utf8');
+    const start = types.indexOf(`export interface ${name} `);
+    if (start < 0)
+        return [];
+    const body = types.slice(types.indexOf('{', start) + 1);
+    const paths = [], groups = [];
+    let depth = 0;
+    for (const line of body.split('\n')) {
+        const code = line.replace(/\/\*.*?\*\/|\/\/.*$/g, '');
+        const property = code.match(/^\s*(\w+)\??:\s*(\{?)/);
+        if (property && depth === groups.length && !code.trim().startsWith('*')) {
+            if (property[2] === '{' && !code.includes('}'))
+                groups.push(property[1]);
+            else
+                paths.push([...groups, property[1]].join('.'));
+        }
+        depth += (code.match(/\{/g) || []).length - (code.match(/\}/g) || []).length;
+        if (depth < 0) // the interface's own }
+            break;
+        groups.length = Math.min(groups.length, depth);
+    }
+    return paths;
+}
+
 // mulberry32: small, seeded, the same on every machine.
 export function random(seed) {
     let a = seed >>> 0;
