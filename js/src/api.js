@@ -5,7 +5,6 @@
 // side is src/meshfix_wasm.c: meshfix.h's functions, and the table of the
 // structs' fields by which this file reads and writes them.
 
-const POLICIES = ['auto', 'seed', 'majority', 'outward', 'sdf', 'visibility', 'up', 'normals'];
 const TOPOLOGIES = ['positions', 'indices', 'weld'];
 const VERDICTS = ['clean', 'repaired', 'doubtful', 'not-orientable', 'inconsistent', 'inside-out'];
 const REQUIREMENTS = { consistent: 1, closed: 2, manifold: 4, outward: 8, 'no-degenerate': 16, solid: 31 };
@@ -92,6 +91,7 @@ function load(e) {
         e,
         layout,
         results,
+        policies: Array.from({ length: e.mfjs_policy_count() }, (_, i) => readString(e, e.meshfix_policy_string(i))),
         options: new Map(layout.structs.meshfix_options.fields.map((f) => [f.name, f])),
         schemas: { call: optionSchema(layout, CALL_OPTIONS), weld: optionSchema(null, WELD_OPTIONS) },
     };
@@ -262,13 +262,25 @@ function takeName(value, path, names) {
     return i;
 }
 
+// The names the library knows (meshfix_policy_string), less "sdf": it calls a C function for the distance.
+function policyNames() {
+    return instance().policies.filter((name) => name !== 'sdf');
+}
+
 function takePolicy(value, path) {
     if (value === 'sdf')
         throw optionError(path, '"sdf" calls a C function for the distance; it is not available from JavaScript');
-    const policy = POLICIES.indexOf(value);
-    if (typeof value !== 'string' || policy < 0)
-        throw optionError(path, `${show(value)} is not one of ${POLICIES.filter((name) => name !== 'sdf').join(', ')}`);
+    const policy = typeof value === 'string' && !value.includes('\0') ? policyFromString(value) : wasm.policies.length;
+    if (policy >= wasm.policies.length)
+        throw optionError(path, `${show(value)} is not one of ${policyNames().join(', ')}`);
     return policy;
+}
+
+function policyFromString(name) {
+    return withHeap((alloc, e) => {
+        const bytes = new TextEncoder().encode(`${name}\0`);
+        return e.meshfix_policy_from_string(copyIn(e, alloc, bytes));
+    });
 }
 
 function takeUp(value, path, field) {

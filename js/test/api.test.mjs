@@ -407,6 +407,28 @@ await test('result codes: the JavaScript side has every one of meshfix.h\'s MESH
     return problems;
 });
 
+await test('policies: the library\'s names (meshfix_policy_string), each taken; the types and the README list them', () => {
+    const problems = [];
+    const names = scope.wasm.policies.filter((name) => name !== 'sdf');
+    if (scope.wasm.policies.length < 8 || !scope.wasm.policies.includes('sdf'))
+        problems.push(`policies ${scope.wasm.policies}`);
+    for (const policy of names)
+        try {
+            orient(tetraIndices(), tetraPositions, { policy, evidence: { triangleNormals: new Float32Array(12) } });
+        } catch (error) {
+            problems.push(`${policy}: ${error.message}`);
+        }
+    const types = readFileSync(join(jsDir, 'meshfix.d.ts'), 'utf8').match(/^export type Policy = (.*);$/m)[1];
+    const declared = [...types.matchAll(/'([^']+)'/g)].map((m) => m[1]);
+    if (declared.join() !== names.join())
+        problems.push(`meshfix.d.ts Policy: ${declared}; the library: ${names}`);
+    const readme = readFileSync(join(jsDir, 'README.md'), 'utf8').match(/^\| `policy` \| ([^|]*) \|/m)[1];
+    const listed = [...readme.matchAll(/`'([^']+)'`/g)].map((m) => m[1]);
+    if (listed.join() !== names.join())
+        problems.push(`README policy row: ${listed}; the library: ${names}`);
+    return problems;
+});
+
 await test('meshfix.d.ts declares the options the calls take and the report and components they return', () => {
     const problems = [];
     const compare = (what, declared, actual) => {

@@ -141,7 +141,6 @@ export function buildNative() {
     return binary;
 }
 
-export const POLICY_NUMBERS = { auto: 0, seed: 1, majority: 2, outward: 3, sdf: 4, visibility: 5, up: 6, normals: 7 };
 export const NATIVE_FIELDS = ['verdict', 'trianglesFlipped', 'patchesFlipped', 'patchesDoubtful', 'trianglesDoubtful',
     'edgesInconsistentBefore', 'mesh.patches', 'mesh.edgesInconsistent', 'mesh.components',
     'evidence.patchesByVolume', 'evidence.patchesByNormals', 'evidence.patchesKept'];
@@ -152,9 +151,9 @@ export const VERDICT_NUMBERS = { clean: 0, repaired: 1, doubtful: 2, 'not-orient
 export function runNative(binary, meshes, name) {
     const parts = [];
     for (const m of meshes) {
-        const head = new Uint32Array([m.indices.length, m.positions.length / 3, POLICY_NUMBERS[m.policy || 'auto'],
-            m.normals ? 1 : 0]);
-        parts.push(Buffer.from(head.buffer), Buffer.from(m.indices.buffer, m.indices.byteOffset, m.indices.byteLength),
+        const policy = Buffer.from(m.policy || 'auto'); // by name: the native build asks meshfix_policy_from_string
+        const head = new Uint32Array([m.indices.length, m.positions.length / 3, policy.length, m.normals ? 1 : 0]);
+        parts.push(Buffer.from(head.buffer), policy, Buffer.from(m.indices.buffer, m.indices.byteOffset, m.indices.byteLength),
             Buffer.from(m.positions.buffer, m.positions.byteOffset, m.positions.byteLength));
         if (m.normals)
             parts.push(Buffer.from(m.normals.buffer, m.normals.byteOffset, m.normals.byteLength));
