@@ -37,6 +37,7 @@ export interface Options {
     vertexCount?: number;
     topology?: Topology;
     weldTolerance?: number;
+    /** 'normals' needs positions and evidence normals (else MESHFIX_ERROR_POSITIONS_REQUIRED, MESHFIX_ERROR_NORMALS_REQUIRED). */
     policy?: Policy;
     /** The axis of policy 'up'; default +z ('y' in the glTF transform). */
     up?: Axis | [number, number, number];

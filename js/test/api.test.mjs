@@ -343,6 +343,16 @@ await test('options: undefined is as if left out (any name, any level); null opt
     return problems;
 });
 
+await test('policy "normals" without positions or without normals: the library\'s POSITIONS_REQUIRED and NORMALS_REQUIRED, in its words', () => {
+    const normals = new Float32Array(12);
+    return [
+        ...refused(() => orient(tetraIndices(), null, { policy: 'normals' }), 'MESHFIX_ERROR_POSITIONS_REQUIRED', null),
+        ...refused(() => orient(tetraIndices(), null, { policy: 'normals', evidence: { vertexNormals: normals } }), 'MESHFIX_ERROR_POSITIONS_REQUIRED', null),
+        ...refused(() => orient(tetraIndices(), tetraPositions, { policy: 'normals' }), 'MESHFIX_ERROR_NORMALS_REQUIRED', null),
+        ...refused(() => orient(tetraIndices(), tetraPositions, { policy: 'normals', evidence: { vertexNormals: null } }), 'MESHFIX_ERROR_NORMALS_REQUIRED', null),
+    ];
+});
+
 // What the bundle does not export: its load-time check of the struct table, and what it made of the WebAssembly.
 const bundle = bundleScope(['parseLayout', 'layoutProblems', 'layoutText', 'load', 'USES']);
 await bundle.ready;

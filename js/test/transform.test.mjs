@@ -288,5 +288,22 @@ await test('transform: undefined options are as if left out', async () => {
     return r.trianglesFlipped === 12 ? [] : [r.summary];
 });
 
+await test('transform: policy "normals" refuses the meshes without NORMAL (NORMALS_REQUIRED), repairs the sheet by its NORMAL', async () => {
+    const text = `meshfix: ${headerResults().find((r) => r.name === 'MESHFIX_ERROR_NORMALS_REQUIRED').text}`;
+    const { report: r } = await run(build(), { policy: 'normals' });
+    const problems = [];
+    for (const name of ['cube', 'lid', 'good']) {
+        const m = r.meshes.find((e) => e.name === name);
+        if (m.error !== text)
+            problems.push(`${name}: ${m.error || m.summary}`);
+    }
+    const sheet = r.meshes.find((m) => m.name === 'sheet');
+    if (sheet.trianglesFlipped !== 2 || sheet.error !== undefined)
+        problems.push(`sheet: ${sheet.error || sheet.summary}`);
+    if (!/3 meshes refused/.test(r.summary))
+        problems.push(r.summary);
+    return problems;
+});
+
 console.log(`transform: ${failed()} failed`);
 process.exit(failed() ? 1 : 0);
