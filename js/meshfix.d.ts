@@ -20,14 +20,24 @@ export type VisibilityFlag = 'coherence-only' | 'visibility-only';
 export type Indices = Uint32Array | Uint16Array | Uint8Array | ArrayLike<number>;
 export type Positions = Float32Array | Float64Array | ArrayLike<number>;
 
-/** meshfix_options; every field optional, as zero is the default in C. */
+/**
+ * meshfix_options; every field optional, as zero is the default in C. A property set to
+ * `undefined` counts as left out (so do `null` options and `null` normals). Anything else is
+ * checked, never changed to the default: an unknown name at any level, a value of the wrong
+ * type, or a number its C field cannot hold (negative or fractional for an unsigned field,
+ * above 2^32 - 1 for unsigned int and wasm32's size_t, NaN, Infinity) throws a MeshfixError
+ * with code 'MESHFIX_ERROR_INVALID_ARGUMENT', the library's text and the option's name. What the
+ * C field holds but the library refuses (rays above 2^24, ...) throws the same from the library.
+ * Not offered: sdf and memory (C callbacks and memory), parallel_for.
+ */
 export interface Options {
-    /** Floats (or doubles) from one vertex's x to the next one's; default 3. */
+    /** Floats (or doubles) from one vertex's x to the next one's; default 3 (0 means 3, as in C). */
     positionsStride?: number;
     /** Default: all the positions given (or, without positions, the highest index + 1). */
     vertexCount?: number;
     topology?: Topology;
     weldTolerance?: number;
+    /** 'normals' needs positions and evidence normals (else MESHFIX_ERROR_POSITIONS_REQUIRED, MESHFIX_ERROR_NORMALS_REQUIRED). */
     policy?: Policy;
     /** The axis of policy 'up'; default +z ('y' in the glTF transform). */
     up?: Axis | [number, number, number];
@@ -40,6 +50,7 @@ export interface Options {
         minConfidence?: number;
         /** Normals you have (STL facets, OBJ vn, glTF NORMAL): evidence under 'auto', the rule under 'normals'. */
         triangleNormals?: Float32Array | ArrayLike<number> | null;
+        /** In floats; default 3 (0 means 3). */
         triangleNormalsStride?: number;
         vertexNormals?: Float32Array | ArrayLike<number> | null;
         vertexNormalsStride?: number;
@@ -165,7 +176,10 @@ export interface CheckResult {
     edge: [number, number] | null;
 }
 
-/** Thrown when the library refuses a mesh; `code` is the C name, e.g. 'MESHFIX_ERROR_INDEX_OUT_OF_RANGE'. */
+/**
+ * Thrown when the library refuses a mesh or an option; `code` is the C name, e.g.
+ * 'MESHFIX_ERROR_INDEX_OUT_OF_RANGE', the message the library's text (meshfix_result_string).
+ */
 export class MeshfixError extends Error {
     code: string;
 }
@@ -179,7 +193,7 @@ export function inspect(indices: Indices, positions?: Positions | null, options?
 /** meshfix_check: ok, or the first requirement that fails and why (default 'consistent'). */
 export function check(indices: Indices, positions?: Positions | null, requirements?: Requirement | Requirement[] | number,
                       options?: Options): CheckResult;
-/** meshfix_weld: remap[v] is the lowest vertex v welds to within tolerance (0: equal positions). */
+/** meshfix_weld: remap[v] is the lowest vertex v welds to within tolerance (0: equal positions); options: only these two. */
 export function weld(positions: Positions, tolerance?: number, options?: Pick<Options, 'positionsStride' | 'vertexCount'>):
     { remap: Uint32Array; uniqueCount: number };
 
@@ -241,7 +255,12 @@ export interface GltfMeshInput {
     primitives: Array<{ primitive: unknown; index: number; mode: number; firstTriangle: number; triangleCount: number }>;
 }
 
-export interface GltfOptions extends Omit<Options, 'positionsStride' | 'vertexCount' | 'inPlace' | 'components'> {
+/**
+ * orient's options but one call's own (the normals are each mesh's NORMAL), and the transform's;
+ * checked as orient's before any mesh: a bad one rejects the transform's promise.
+ */
+export interface GltfOptions extends Omit<Options, 'positionsStride' | 'vertexCount' | 'inPlace' | 'components' | 'evidence'> {
+    evidence?: Omit<NonNullable<Options['evidence']>, 'triangleNormals' | 'triangleNormalsStride' | 'vertexNormals' | 'vertexNormalsStride'>;
     /** Pass each primitive's NORMAL as evidence (default true). */
     normals?: boolean;
     /** Report what would change, write nothing. */

@@ -1,7 +1,8 @@
 // Builds dist/meshfix.mjs (ES module) and dist/meshfix.cjs (CommonJS) from
 // ../meshfix.h with Emscripten: src/meshfix_wasm.c becomes a standalone
 // .wasm, inlined as base64 into one JavaScript file per module system
-// together with src/api.js and src/gltf.js. Nothing is fetched at run time.
+// together with src/layout.js, src/api.js and src/gltf.js. Nothing is
+// fetched at run time.
 //
 //   node scripts/build.mjs             build
 //   node scripts/build.mjs --if-stale  build unless dist/ is newer than every source (npm prepack)
@@ -16,7 +17,7 @@ const js = join(dirname(fileURLToPath(import.meta.url)), '..');
 const root = join(js, '..');
 const dist = join(js, 'dist');
 const header = join(root, 'meshfix.h');
-const sources = ['src/meshfix_wasm.c', 'src/api.js', 'src/gltf.js', 'scripts/build.mjs'].map((f) => join(js, f));
+const sources = ['src/meshfix_wasm.c', 'src/layout.js', 'src/api.js', 'src/gltf.js', 'scripts/build.mjs'].map((f) => join(js, f));
 const outputs = ['meshfix.mjs', 'meshfix.cjs'].map((f) => join(dist, f));
 
 // What the modules export, in the order of meshfix.d.ts.
@@ -59,6 +60,7 @@ function bundle(wasm) {
     const body = [
         `const MESHFIX_LIBRARY_VERSION = '${library}';`,
         `const MESHFIX_WASM = '${wasm.toString('base64')}';`,
+        readFileSync(join(js, 'src/layout.js'), 'utf8'),
         readFileSync(join(js, 'src/api.js'), 'utf8'),
         readFileSync(join(js, 'src/gltf.js'), 'utf8'),
     ].join('\n');

@@ -251,10 +251,20 @@ function gltfSummary(r) {
     return notes.length ? `${line}; ${notes.join(', ')}` : line;
 }
 
+// The transform's options: orient's, less those of one call's arrays (the
+// normals are each mesh's NORMAL), and its own.
+const GLTF_OPTIONS = { normals: takeBoolean, dryRun: takeBoolean, onReport: takeFunction, onMesh: takeFunction };
+const GLTF_NOT_OPTIONS = ['evidence.triangleNormals', 'evidence.triangleNormalsStride', 'evidence.vertexNormals',
+    'evidence.vertexNormalsStride'];
+let gltfSchema = null;
+
 function meshfix(options) {
     options = options || {};
     const transform = async function meshfixTransform(document) {
         await ready;
+        // refused before any mesh, as orient would refuse them for every mesh
+        gltfSchema = gltfSchema || optionSchema(instance().layout, GLTF_OPTIONS, GLTF_NOT_OPTIONS);
+        takeOptions(options, gltfSchema);
         const root = document.getRoot();
         const logger = document.getLogger();
         const compressed = root.listExtensionsUsed().map((e) => e.extensionName).filter((n) => GLTF_COMPRESSION.includes(n));
@@ -287,7 +297,8 @@ function meshfix(options) {
             try {
                 result = orient(arrays.indices, arrays.positions, callOptions);
             } catch (error) {
-                if (!(error instanceof MeshfixError))
+                // an option the library refuses (rays above its limit, ...) is refused for every mesh: so is the transform
+                if (!(error instanceof MeshfixError) || error.code === 'MESHFIX_ERROR_INVALID_ARGUMENT')
                     throw error;
                 entry.error = error.message;
                 logger.warn(`meshfix: mesh "${gltfName(mesh, meshIndex)}" left as it is: ${error.message}`);

@@ -6,8 +6,9 @@ import { execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
+import util from 'node:util';
 import * as esm from '../dist/meshfix.mjs';
-import { compareWithNative, failed, jsDir, random, runNative, test } from './common.mjs';
+import { bundleScope, compareWithNative, declaredFields, failed, headerResults, jsDir, random, runNative, test } from './common.mjs';
 
 const { ready, orient, inspect, check, weld, MeshfixError, version } = esm;
 const require = createRequire(import.meta.url);
@@ -60,6 +61,27 @@ function throwsCode(body, code) {
     }
     return [`did not throw ${code}`];
 }
+
+// The library's words for a result, read from meshfix.h (not from the WebAssembly).
+const resultText = (name) => `meshfix: ${headerResults().find((r) => r.name === name).text}`;
+
+// A MeshfixError of `code` whose message is the library's text: alone (the
+// library refused), or followed by `: ${named} ` (JavaScript refused an
+// option or argument before the call, naming it).
+function refused(body, code, named) {
+    const text = resultText(code);
+    try {
+        body();
+    } catch (error) {
+        if (!(error instanceof MeshfixError) || error.code !== code)
+            return [`${named}: threw ${error.name} ${error.code}: ${error.message}`];
+        if (named === null ? error.message !== text : !error.message.startsWith(`${text}: ${named} `))
+            return [`${named}: message "${error.message}"`];
+        return [];
+    }
+    return [`${named}: did not throw ${code}`];
+}
+const invalid = (body, named) => refused(body, 'MESHFIX_ERROR_INVALID_ARGUMENT', named);
 
 function throwsType(body, Type, pattern) {
     try {
@@ -181,7 +203,7 @@ await test('orient: NORMAL-like vertex and triangle normals as evidence turn an 
     const byTriangle = orient(down, quad, { policy: 'normals', evidence: { triangleNormals: [0, 1, 0, 0, 1, 0] } });
     if (byTriangle.report.trianglesFlipped !== 2)
         problems.push(`triangle normals: ${byTriangle.summary}`);
-    problems.push(...throwsType(() => orient(down, quad, { evidence: { vertexNormals: new Float32Array(6) } }), RangeError, /vertexNormals/));
+    problems.push(...invalid(() => orient(down, quad, { evidence: { vertexNormals: new Float32Array(6) } }), 'evidence.vertexNormals'));
     return problems;
 });
 
@@ -228,13 +250,211 @@ await test('errors: the library\'s status as MeshfixError.code; bad options name
     ...throwsCode(() => orient([0, 1], tetraPositions), 'MESHFIX_ERROR_NOT_TRIANGLES'),
     ...throwsCode(() => orient(tetraIndices(), null, { policy: 'outward' }), 'MESHFIX_ERROR_POSITIONS_REQUIRED'),
     ...throwsCode(() => orient(tetraIndices(), tetraPositions, { evidence: { sigma: -1 } }), 'MESHFIX_ERROR_INVALID_ARGUMENT'),
-    ...throwsType(() => orient(tetraIndices(), tetraPositions, { policy: 'outwards' }), TypeError, /policy "outwards" is not one of auto/),
-    ...throwsType(() => orient(tetraIndices(), tetraPositions, { policy: 'sdf' }), TypeError, /not available from JavaScript/),
-    ...throwsType(() => orient(tetraIndices(), tetraPositions, { topology: 'welded' }), TypeError, /topology/),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { policy: 'outwards' }), 'policy'),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { policy: 'sdf' }), 'policy'),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { topology: 'welded' }), 'topology'),
     ...throwsType(() => orient([0, -1, 2], tetraPositions), RangeError, /index -1/),
-    ...throwsType(() => orient(tetraIndices(), tetraPositions, { vertexCount: 5 }), RangeError, /vertexCount 5/),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { vertexCount: 5 }), 'vertexCount'),
     ...throwsType(() => orient('0 1 2', tetraPositions), TypeError, /indices must be/),
 ]);
+
+await test('options: a value its C field cannot hold is refused, not defaulted: the library\'s invalid-argument text, naming it', () => {
+    const cases = [
+        // [path, options]: unsigned int, wasm32's size_t, float, and their kinds
+        ...[2 ** 40, 2 ** 32, -1, 1e300, NaN, Infinity, 1.5, '5', null, true, 5n, [5]].map((rays) => ['visibility.rays', { visibility: { rays } }]),
+        ['visibility.minSamples', { visibility: { minSamples: -5 } }],
+        ['visibility.minSamples', { visibility: { minSamples: 2 ** 32 } }],
+        ['seed', { seed: 2 ** 32 }], ['seed', { seed: -1 }], ['seed', { seed: 0.5 }],
+        ['weldTolerance', { weldTolerance: 1e300 }], ['weldTolerance', { weldTolerance: NaN }],
+        ['evidence.sigma', { evidence: { sigma: Infinity } }], ['visibility.kv', { visibility: { kv: '1.5' } }],
+        ['up[1]', { up: [0, NaN, 0] }], ['up', { up: [0, 1] }], ['up', { up: 'w' }], ['up', { up: 'toString' }], ['up', { up: null }],
+        ['visibility.flags', { visibility: { flags: 2 ** 32 } }], ['visibility.flags', { visibility: { flags: 'both' } }],
+        ['policy', { policy: 5 }], ['policy', { policy: 'toString' }], ['policy', { policy: 'seed\0' }], ['topology', { topology: 1 }],
+        ['positionsStride', { positionsStride: 1.5 }], ['positionsStride', { positionsStride: -3 }],
+        ['vertexCount', { vertexCount: -1 }], ['components', { components: 1 }], ['inPlace', { inPlace: 'yes' }],
+        ['evidence.vertexNormalsStride', { evidence: { vertexNormalsStride: 2 ** 31 } }],
+        ['evidence.triangleNormals', { evidence: { triangleNormals: 'up' } }],
+        ['evidence', { evidence: 5 }], ['visibility', { visibility: null }], ['evidence', { evidence: [1] }],
+    ];
+    const problems = [];
+    for (const [path, options] of cases)
+        problems.push(...invalid(() => orient(tetraIndices(), tetraPositions, options), path).map((p) => `${p} (${util.inspect(options, { breakLength: Infinity })})`));
+    problems.push(...invalid(() => inspect(tetraIndices(), tetraPositions, { visibility: { rays: -1 } }), 'visibility.rays'));
+    problems.push(...invalid(() => check(tetraIndices(), tetraPositions, 'consistent', { seed: NaN }), 'seed'));
+    problems.push(...invalid(() => weld(tetraPositions, NaN), 'tolerance'));
+    problems.push(...invalid(() => weld(tetraPositions, 1e300), 'tolerance'));
+    problems.push(...invalid(() => weld(tetraPositions, 0, { vertexCount: 2 ** 33 }), 'vertexCount'));
+    return problems;
+});
+
+await test('options: an unknown name is refused at every level, naming it (as the Python binding does)', () => [
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { polcy: 'seed' }), 'polcy'),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { evidence: { sigmaa: 3 } }), 'evidence.sigmaa'),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { visibility: { ray: 64 } }), 'visibility.ray'),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { sdf: { step: 1 } }), 'sdf'), // C callbacks: not offered
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { memory: {} }), 'memory'),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { indexSize: 2 }), 'indexSize'), // set from the arrays
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { 'evidence.sigma': 3 }), 'evidence.sigma'),
+    ...invalid(() => orient(tetraIndices(), tetraPositions, { up: 'y', evidence: { sigma: 3, vertexNormals: null, extra: 1 } }), 'evidence.extra'),
+    ...invalid(() => inspect(tetraIndices(), tetraPositions, { component: true }), 'component'),
+    ...invalid(() => check(tetraIndices(), tetraPositions, 'closed', { polcy: 'seed' }), 'polcy'),
+    ...invalid(() => weld(tetraPositions, 0, { policy: 'seed' }), 'policy'), // weld takes positionsStride and vertexCount
+]);
+
+await test('options: values the C field holds reach the library, which refuses some in its own words', () => {
+    const quadNormals = new Float32Array(12);
+    const problems = [
+        ...invalid(() => orient(tetraIndices(), tetraPositions, { visibility: { rays: 2 ** 24 + 1 } }), null),
+        ...invalid(() => orient(tetraIndices(), tetraPositions, { visibility: { rays: 2 ** 32 - 1 } }), null), // wasm32's size_t holds it
+        ...invalid(() => orient(tetraIndices(), tetraPositions, { visibility: { minSamples: 65537 } }), null),
+        ...invalid(() => orient(tetraIndices(), tetraPositions, { evidence: { sigma: -1 } }), null),
+        ...invalid(() => orient(tetraIndices(), tetraPositions, { evidence: { minConfidence: 2 } }), null),
+        ...invalid(() => orient(tetraIndices(), tetraPositions, { visibility: { eps: 2 } }), null),
+        ...invalid(() => orient(tetraIndices(), tetraPositions, { evidence: { vertexNormals: quadNormals, vertexNormalsStride: 2 } }), null),
+        ...invalid(() => orient(tetraIndices(), tetraPositions, { positionsStride: 2 }), null),
+    ];
+    const most = orient(tetraIndices(), tetraPositions, { policy: 'visibility', visibility: { rays: 2 ** 24 } });
+    if (most.report.evidence.raysCast !== 2 ** 24)
+        problems.push(`rays 2^24: ${most.report.evidence.raysCast} rays cast`);
+    if (orient(tetraIndices(), tetraPositions, { policy: 'visibility', seed: 2 ** 32 - 1 }).report.trianglesFlipped !== 1)
+        problems.push('seed 2^32-1');
+    const samples = orient(tetraIndices(), tetraPositions, { policy: 'visibility', visibility: { rays: 8, minSamples: 65536 } });
+    if (samples.report.trianglesFlipped !== 1)
+        problems.push(`minSamples 65536: ${samples.summary}`);
+    return problems;
+});
+
+await test('options: undefined is as if left out (any name, any level); null options too, and null normals', () => {
+    const plain = orient(tetraIndices(), tetraPositions, { policy: 'visibility' });
+    const same = (r) => JSON.stringify([r.report, Array.from(r.flipped)]) === JSON.stringify([plain.report, Array.from(plain.flipped)]);
+    const problems = [];
+    const variants = {
+        undefined: { policy: 'visibility', topology: undefined, up: undefined, seed: undefined, evidence: undefined, components: undefined,
+            visibility: { rays: undefined, minSamples: undefined, flags: undefined }, polcy: undefined, positionsStride: undefined },
+        'null normals': { policy: 'visibility', evidence: { vertexNormals: null, triangleNormals: null } },
+    };
+    for (const [name, options] of Object.entries(variants))
+        if (!same(orient(tetraIndices(), tetraPositions, options)))
+            problems.push(`${name}: not the default`);
+    if (orient(tetraIndices(), tetraPositions, null).report.trianglesFlipped !== 1 || orient(tetraIndices(), tetraPositions, undefined).report.trianglesFlipped !== 1)
+        problems.push('null or undefined options');
+    if (weld(tetraPositions, undefined, { vertexCount: undefined }).uniqueCount !== 4)
+        problems.push('weld with undefined tolerance');
+    return problems;
+});
+
+await test('policy "normals" without positions or without normals: the library\'s POSITIONS_REQUIRED and NORMALS_REQUIRED, in its words', () => {
+    const normals = new Float32Array(12);
+    return [
+        ...refused(() => orient(tetraIndices(), null, { policy: 'normals' }), 'MESHFIX_ERROR_POSITIONS_REQUIRED', null),
+        ...refused(() => orient(tetraIndices(), null, { policy: 'normals', evidence: { vertexNormals: normals } }), 'MESHFIX_ERROR_POSITIONS_REQUIRED', null),
+        ...refused(() => orient(tetraIndices(), tetraPositions, { policy: 'normals' }), 'MESHFIX_ERROR_NORMALS_REQUIRED', null),
+        ...refused(() => orient(tetraIndices(), tetraPositions, { policy: 'normals', evidence: { vertexNormals: null } }), 'MESHFIX_ERROR_NORMALS_REQUIRED', null),
+    ];
+});
+
+// What the bundle does not export: its load-time check of the struct table, and what it made of the WebAssembly.
+const bundle = bundleScope(['parseLayout', 'layoutProblems', 'layoutText', 'load', 'USES']);
+await bundle.ready;
+const { scope } = bundle;
+const table = scope.layoutText(scope.wasm.e);
+const layoutProblems = (edit) => scope.layoutProblems(scope.parseLayout(edit(table)), scope.USES);
+const moved = (line, by) => (t) => t.replace(new RegExp(`^(${line}) (\\d+)`, 'm'), (_, head, offset) => `${head} ${+offset + by}`);
+const dropped = (line) => (t) => t.replace(new RegExp(`^${line} .*\n`, 'm'), '');
+
+await test('layout: the WebAssembly\'s table of meshfix.h\'s structs passes the load-time check', () => {
+    const problems = layoutProblems((t) => t);
+    for (const name of ['meshfix_options', 'meshfix_outputs', 'meshfix_report', 'meshfix_component', 'meshfix_check_failure'])
+        if (!(name in scope.wasm.layout.structs))
+            problems.push(`no ${name} in the table`);
+    return problems;
+});
+
+await test('layout: the check catches a wrong offset, a field left out (middle or end), a kind or a field this file uses', () => {
+    const cases = [
+        ['visibility.min_samples 4 bytes later', moved('meshfix_options visibility\\.min_samples', 4), /meshfix_options\.visibility\.min_samples is at byte 68, where C would put it .* is 64/],
+        ['seed 4 bytes earlier', moved('meshfix_options seed', -4), /meshfix_options\.seed is at byte 28/],
+        ['mesh.edges_boundary not listed', dropped('meshfix_report mesh\\.edges_boundary'), /meshfix_report\.mesh\.edges_manifold is at byte/],
+        ['signed_volume (the last field) not listed', dropped('meshfix_component signed_volume'), /meshfix_component is 56 bytes, its listed fields take 48/],
+        ['policy a float', (t) => t.replace(/^(meshfix_options policy \d+ 4 4) u/m, '$1 f'), /meshfix_options\.policy is f32, taken here as integer/],
+        ['components_capacity not listed', dropped('meshfix_outputs components_capacity'), /meshfix_outputs\.components_capacity is missing/],
+        ['a pointer of 2 bytes', (t) => t.replace(/^(meshfix_outputs flipped \d+) 4 4 p/m, '$1 2 2 p'), /meshfix_outputs\.flipped is 2 bytes of kind p/],
+        ['a struct of no size', dropped('meshfix_report -'), /meshfix_report has fields but no size/],
+    ];
+    const problems = [];
+    for (const [name, edit, expected] of cases) {
+        if (edit(table) === table)
+            problems.push(`${name}: the edit changed nothing`);
+        const found = layoutProblems(edit);
+        if (!found.some((p) => expected.test(p)))
+            problems.push(`${name}: ${found.length ? found.join('; ') : 'no problem found'}`);
+    }
+    return problems;
+});
+
+await test('layout: a table that fails the check fails the load, loudly', () => {
+    const e = scope.wasm.e;
+    const bad = moved('meshfix_report verdict', 8)(table);
+    const fake = { ...e, mfjs_layout(buffer, size) { // the real exports, the table edited
+        const bytes = new TextEncoder().encode(`${bad}\0`);
+        if (buffer !== 0)
+            new Uint8Array(e.memory.buffer, buffer, size).set(bytes.subarray(0, size));
+        return bytes.length - 1;
+    } };
+    try {
+        scope.load(fake);
+    } catch (error) {
+        return /WebAssembly's structs are not what this JavaScript reads and writes.*meshfix_report\.verdict is at byte 8/.test(error.message) ? [] : [error.message];
+    }
+    return ['load() took the edited table'];
+});
+
+await test('result codes: the JavaScript side has every one of meshfix.h\'s MESHFIX_RESULT_LIST, by value', () => {
+    const header = headerResults().map((r) => r.name);
+    const problems = scope.wasm.results.join() === header.join() ? [] : [`WebAssembly ${scope.wasm.results}, header ${header}`];
+    if (!header.includes('MESHFIX_ERROR_NORMALS_REQUIRED'))
+        problems.push('the header has no MESHFIX_ERROR_NORMALS_REQUIRED (read wrongly?)');
+    return problems;
+});
+
+await test('policies: the library\'s names (meshfix_policy_string), each taken; the types and the README list them', () => {
+    const problems = [];
+    const names = scope.wasm.policies.filter((name) => name !== 'sdf');
+    if (scope.wasm.policies.length < 8 || !scope.wasm.policies.includes('sdf'))
+        problems.push(`policies ${scope.wasm.policies}`);
+    for (const policy of names)
+        try {
+            orient(tetraIndices(), tetraPositions, { policy, evidence: { triangleNormals: new Float32Array(12) } });
+        } catch (error) {
+            problems.push(`${policy}: ${error.message}`);
+        }
+    const types = readFileSync(join(jsDir, 'meshfix.d.ts'), 'utf8').match(/^export type Policy = (.*);$/m)[1];
+    const declared = [...types.matchAll(/'([^']+)'/g)].map((m) => m[1]);
+    if (declared.join() !== names.join())
+        problems.push(`meshfix.d.ts Policy: ${declared}; the library: ${names}`);
+    const readme = readFileSync(join(jsDir, 'README.md'), 'utf8').match(/^\| `policy` \| ([^|]*) \|/m)[1];
+    const listed = [...readme.matchAll(/`'([^']+)'`/g)].map((m) => m[1]);
+    if (listed.join() !== names.join())
+        problems.push(`README policy row: ${listed}; the library: ${names}`);
+    return problems;
+});
+
+await test('meshfix.d.ts declares the options the calls take and the report and components they return', () => {
+    const problems = [];
+    const compare = (what, declared, actual) => {
+        const missing = actual.filter((n) => !declared.includes(n)), extra = declared.filter((n) => !actual.includes(n));
+        if (missing.length || extra.length)
+            problems.push(`${what}: not declared ${missing}; declared, not there ${extra}`);
+    };
+    compare('Options', declaredFields('Options'), [...scope.wasm.schemas.call.keys()]);
+    const r = inspect(tetraIndices(), tetraPositions, { components: true });
+    const report = declaredFields('Report').filter((n) => n !== 'mesh' && n !== 'evidence')
+        .concat(declaredFields('MeshFacts').map((n) => `mesh.${n}`), declaredFields('EvidenceCounts').map((n) => `evidence.${n}`));
+    const flat = (o, prefix = '') => Object.entries(o).flatMap(([k, v]) => (v !== null && typeof v === 'object' ? flat(v, `${prefix}${k}.`) : [`${prefix}${k}`]));
+    compare('Report', report, flat(r.report));
+    compare('Component', declaredFields('Component'), Object.keys(r.components[0]));
+    return problems;
+});
 
 await test('memory: 300 calls and a 200k-triangle mesh leave the WebAssembly heap where it was', () => {
     const big = sphere(250, 400, false);

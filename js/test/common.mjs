@@ -4,6 +4,7 @@
 // reference build and the Khronos validator.
 import { execFileSync } from 'node:child_process';
 import { readFileSync, writeFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -41,6 +42,53 @@ export async function test(name, body) {
 
 export function failed() {
     return failures;
+}
+
+// The bundle's own scope, for tests of what it does not export:
+// dist/meshfix.cjs run once more (with a WebAssembly instance of its own),
+// `names` from its top level exported beside its API as `scope`, and
+// `scope.wasm` what the load made of the WebAssembly.
+export function bundleScope(names) {
+    const source = readFileSync(join(jsDir, 'dist/meshfix.cjs'), 'utf8');
+    const module = { exports: {} };
+    const scope = `\nmodule.exports.scope = { ${names.join(', ')}, get wasm() { return wasm; } };\n`;
+    new Function('module', 'exports', 'require', source + scope)(module, module.exports, createRequire(import.meta.url));
+    return module.exports;
+}
+
+// meshfix.h's MESHFIX_RESULT_LIST, read from the header: [{ name, text }] by value.
+export function headerResults() {
+    const header = readFileSync(join(jsDir, '..', 'meshfix.h'), 'utf8');
+    const start = header.indexOf('#define MESHFIX_RESULT_LIST(X)');
+    const list = header.slice(start, header.indexOf('\n\n', start));
+    return [...list.matchAll(/X\((MESHFIX_\w+), "((?:[^"\\]|\\.)*)"\)/g)].map((m) => ({ name: m[1], text: m[2] }));
+}
+
+// The properties meshfix.d.ts declares in `export interface NAME { ... }`, as
+// paths: a property whose type is an object literal ({ ... }) by its own.
+export function declaredFields(name) {
+    const types = readFileSync(join(jsDir, 'meshfix.d.ts'), 'utf8');
+    const start = types.indexOf(`export interface ${name} `);
+    if (start < 0)
+        return [];
+    const body = types.slice(types.indexOf('{', start) + 1);
+    const paths = [], groups = [];
+    let depth = 0;
+    for (const line of body.split('\n')) {
+        const code = line.replace(/\/\*.*?\*\/|\/\/.*$/g, '');
+        const property = code.match(/^\s*(\w+)\??:\s*(\{?)/);
+        if (property && depth === groups.length && !code.trim().startsWith('*')) {
+            if (property[2] === '{' && !code.includes('}'))
+                groups.push(property[1]);
+            else
+                paths.push([...groups, property[1]].join('.'));
+        }
+        depth += (code.match(/\{/g) || []).length - (code.match(/\}/g) || []).length;
+        if (depth < 0) // the interface's own }
+            break;
+        groups.length = Math.min(groups.length, depth);
+    }
+    return paths;
 }
 
 // mulberry32: small, seeded, the same on every machine.
@@ -93,7 +141,6 @@ export function buildNative() {
     return binary;
 }
 
-export const POLICY_NUMBERS = { auto: 0, seed: 1, majority: 2, outward: 3, sdf: 4, visibility: 5, up: 6, normals: 7 };
 export const NATIVE_FIELDS = ['verdict', 'trianglesFlipped', 'patchesFlipped', 'patchesDoubtful', 'trianglesDoubtful',
     'edgesInconsistentBefore', 'mesh.patches', 'mesh.edgesInconsistent', 'mesh.components',
     'evidence.patchesByVolume', 'evidence.patchesByNormals', 'evidence.patchesKept'];
@@ -104,9 +151,9 @@ export const VERDICT_NUMBERS = { clean: 0, repaired: 1, doubtful: 2, 'not-orient
 export function runNative(binary, meshes, name) {
     const parts = [];
     for (const m of meshes) {
-        const head = new Uint32Array([m.indices.length, m.positions.length / 3, POLICY_NUMBERS[m.policy || 'auto'],
-            m.normals ? 1 : 0]);
-        parts.push(Buffer.from(head.buffer), Buffer.from(m.indices.buffer, m.indices.byteOffset, m.indices.byteLength),
+        const policy = Buffer.from(m.policy || 'auto'); // by name: the native build asks meshfix_policy_from_string
+        const head = new Uint32Array([m.indices.length, m.positions.length / 3, policy.length, m.normals ? 1 : 0]);
+        parts.push(Buffer.from(head.buffer), policy, Buffer.from(m.indices.buffer, m.indices.byteOffset, m.indices.byteLength),
             Buffer.from(m.positions.buffer, m.positions.byteOffset, m.positions.byteLength));
         if (m.normals)
             parts.push(Buffer.from(m.normals.buffer, m.normals.byteOffset, m.normals.byteLength));

@@ -5,8 +5,9 @@
        native_orient IN OUT
 
    IN holds meshes one after another, little-endian:
-       u32 index_count, u32 vertex_count, u32 policy, u32 has_normals,
-       u32 indices[index_count], f32 positions[3 * vertex_count],
+       u32 index_count, u32 vertex_count, u32 policy_length, u32 has_normals,
+       the policy's name (policy_length bytes, as meshfix_policy_from_string
+       takes it), u32 indices[index_count], f32 positions[3 * vertex_count],
        f32 normals[3 * vertex_count] when has_normals (vertex normals, as evidence).
    OUT gets, per mesh:
        i32 status, f64 values[REPORT_VALUES] (the fields named below),
@@ -34,7 +35,7 @@ static int read_u32(FILE *f, unsigned int *v)
 int main(int argc, char **argv)
 {
     FILE *in, *out;
-    unsigned int index_count, vertex_count, policy, has_normals;
+    unsigned int index_count, vertex_count, policy_length, has_normals;
     int meshes = 0;
     if (argc != 3) {
         fprintf(stderr, "usage: native_orient IN OUT\n");
@@ -53,13 +54,20 @@ int main(int argc, char **argv)
         meshfix_options options = {0};
         meshfix_outputs outputs = {0};
         meshfix_report report;
-        char summary[512];
+        char summary[512], policy[32];
         double values[REPORT_VALUES] = {0};
         unsigned int length;
         int status;
         size_t triangles;
-        if (!read_u32(in, &vertex_count) || !read_u32(in, &policy) || !read_u32(in, &has_normals))
+        if (!read_u32(in, &vertex_count) || !read_u32(in, &policy_length) || !read_u32(in, &has_normals) ||
+            policy_length >= sizeof(policy) || fread(policy, 1, policy_length, in) != policy_length)
             return 3;
+        policy[policy_length] = 0;
+        options.policy = meshfix_policy_from_string(policy);
+        if (options.policy == MESHFIX_POLICY_COUNT) {
+            fprintf(stderr, "native_orient: no policy \"%s\"\n", policy);
+            return 3;
+        }
         triangles = index_count / 3;
         indices = (unsigned int *)malloc((size_t)index_count * 4 + 4);
         positions = (float *)malloc((size_t)vertex_count * 12 + 12);
@@ -73,7 +81,6 @@ int main(int argc, char **argv)
             fread(positions, 12, vertex_count, in) != vertex_count ||
             (has_normals && fread(normals, 12, vertex_count, in) != vertex_count))
             return 3;
-        options.policy = (meshfix_policy)policy;
         options.evidence.vertex_normals = normals;
         outputs.flipped = flipped;
         status = (int)meshfix_orient(indices, indices, index_count, positions, vertex_count, 0, &options, &report,

@@ -7,8 +7,8 @@
 //   node test/transform.test.mjs NATIVE_BINARY
 import { Document, Logger, NodeIO } from '@gltf-transform/core';
 import validator from 'gltf-validator';
-import { meshfix } from '../dist/meshfix.mjs';
-import { compareWithNative, drawnTriangles, failed, runNative, test, validate } from './common.mjs';
+import { meshfix, MeshfixError } from '../dist/meshfix.mjs';
+import { compareWithNative, drawnTriangles, failed, headerResults, runNative, test, validate } from './common.mjs';
 
 const native = process.argv[2];
 const io = new NodeIO().setLogger(new Logger(Logger.Verbosity.ERROR));
@@ -237,6 +237,72 @@ await test('transform: a document without meshes, and a mesh of points, are left
     const p = await run(doc);
     return empty.report.summary === 'clean: nothing to flip (0 triangles, 0 meshes)' && p.report.meshes[0].primitives === 0
         ? [] : [empty.report.summary, p.report.summary];
+});
+
+// The transform rejects with the library's invalid-argument text: followed
+// by ": NAME " when JavaScript refused the option, alone when the library did.
+async function transformRefuses(document, options, named) {
+    const text = `meshfix: ${headerResults().find((r) => r.name === 'MESHFIX_ERROR_INVALID_ARGUMENT').text}`;
+    try {
+        await document.transform(meshfix(options));
+    } catch (error) {
+        const message = error instanceof MeshfixError && error.code === 'MESHFIX_ERROR_INVALID_ARGUMENT' &&
+            (named === null ? error.message === text : error.message.startsWith(`${text}: ${named} `));
+        return message ? [] : [`${named}: threw ${error.name} ${error.code}: ${error.message}`];
+    }
+    return [`${named}: the transform ran`];
+}
+
+await test('transform: its options are checked as orient\'s, before any mesh: unknown names, values no C field holds, its own', async () => {
+    const empty = () => new Document().setLogger(new Logger(Logger.Verbosity.ERROR));
+    const cases = [
+        [{ polcy: 'seed' }, 'polcy'], [{ visibility: { rays: -1 } }, 'visibility.rays'], [{ visibility: { rays: 2 ** 40 } }, 'visibility.rays'],
+        [{ visibility: { minSamples: NaN } }, 'visibility.minSamples'], [{ evidence: { sigmaa: 1 } }, 'evidence.sigmaa'],
+        [{ dryRun: 'yes' }, 'dryRun'], [{ normals: 0 }, 'normals'], [{ onReport: 'log' }, 'onReport'],
+        [{ positionsStride: 3 }, 'positionsStride'], [{ components: true }, 'components'], // one call's options, not the transform's
+        [{ evidence: { vertexNormals: new Float32Array(3) } }, 'evidence.vertexNormals'], // each mesh's NORMAL is
+        [{ policy: 'sdf' }, 'policy'],
+    ];
+    const problems = [];
+    for (const [options, named] of cases) {
+        problems.push(...await transformRefuses(build(), options, named));
+        problems.push(...(await transformRefuses(empty(), options, named)).map((p) => `no meshes: ${p}`));
+    }
+    return problems;
+});
+
+await test('transform: an option the library refuses fails the transform (it would refuse every mesh), the document unchanged', async () => {
+    const document = build();
+    const json = JSON.stringify((await io.writeJSON(document)).json);
+    const problems = [
+        ...await transformRefuses(document, { visibility: { rays: 2 ** 24 + 1 } }, null),
+        ...await transformRefuses(build(), { evidence: { sigma: -1 } }, null),
+    ];
+    if (JSON.stringify((await io.writeJSON(document)).json) !== json)
+        problems.push('the document changed');
+    return problems;
+});
+
+await test('transform: undefined options are as if left out', async () => {
+    const { report: r } = await run(build(), { policy: undefined, dryRun: undefined, normals: undefined, visibility: { rays: undefined }, polcy: undefined });
+    return r.trianglesFlipped === 12 ? [] : [r.summary];
+});
+
+await test('transform: policy "normals" refuses the meshes without NORMAL (NORMALS_REQUIRED), repairs the sheet by its NORMAL', async () => {
+    const text = `meshfix: ${headerResults().find((r) => r.name === 'MESHFIX_ERROR_NORMALS_REQUIRED').text}`;
+    const { report: r } = await run(build(), { policy: 'normals' });
+    const problems = [];
+    for (const name of ['cube', 'lid', 'good']) {
+        const m = r.meshes.find((e) => e.name === name);
+        if (m.error !== text)
+            problems.push(`${name}: ${m.error || m.summary}`);
+    }
+    const sheet = r.meshes.find((m) => m.name === 'sheet');
+    if (sheet.trianglesFlipped !== 2 || sheet.error !== undefined)
+        problems.push(`sheet: ${sheet.error || sheet.summary}`);
+    if (!/3 meshes refused/.test(r.summary))
+        problems.push(r.summary);
+    return problems;
 });
 
 console.log(`transform: ${failed()} failed`);

@@ -26,6 +26,6 @@ export async function main(): Promise<void> {
             console.log(e.code);
     }
     const document = new Document();
-    await document.transform(meshfix({ policy: 'up', up: 'y', onReport: (r: GltfReport) => console.log(r.summary) }));
+    await document.transform(meshfix({ policy: 'up', up: 'y', evidence: { sigma: 3 }, onReport: (r: GltfReport) => console.log(r.summary) }));
     console.log(version, flipped.length, report.verdict, plain.length, text);
 }
