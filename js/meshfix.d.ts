@@ -153,6 +153,8 @@ export interface OrientResult<I> {
     patchIds: Uint32Array;
     /** Per patch, the margin of its verdict, 0 to 1. */
     patchConfidence: Float32Array;
+    /** Per patch, what decided it (meshfix_evidence): 0 nothing (kept), 1 volume, 2 parity, 3 visibility, 4 normals, 5 the policy's rule. */
+    patchEvidence: Uint8Array;
     components?: Component[];
 }
 

@@ -23,7 +23,8 @@ const USES = {
     },
     meshfix_outputs: {
         flipped: 'pointer', patch_ids: 'pointer', patch_confidence: 'pointer', patch_confidence_capacity: 'integer',
-        components: 'pointer', components_capacity: 'integer',
+        components: 'pointer', components_capacity: 'integer', patch_evidence: 'pointer',
+        patch_evidence_capacity: 'integer',
     },
     meshfix_report: { verdict: 'integer', 'mesh.patches': 'integer', 'mesh.components': 'integer' },
     meshfix_component: { closed: 'integer', orientable: 'integer' },
@@ -503,12 +504,14 @@ function run(inspectOnly, indices, positions, options) {
         const flippedPointer = inspectOnly ? 0 : alloc(triangles);
         const patchPointer = alloc(4 * triangles);
         const confidencePointer = inspectOnly ? 0 : alloc(4 * triangles);
+        const evidencePointer = inspectOnly ? 0 : alloc(triangles);
         const componentCapacity = taken.get('components') ? triangles : 0;
         const componentPointer = componentCapacity ? alloc(wasm.layout.structs.meshfix_component.size * componentCapacity) : 0;
         const outputs = writeStruct(e, alloc, 'meshfix_outputs', {
             flipped: flippedPointer, patch_ids: patchPointer, patch_confidence: confidencePointer,
             patch_confidence_capacity: inspectOnly ? 0 : triangles, components: componentPointer,
-            components_capacity: componentCapacity,
+            components_capacity: componentCapacity, patch_evidence: evidencePointer,
+            patch_evidence_capacity: inspectOnly ? 0 : triangles,
         });
         const stride = position.stride * position.size;
         const status = inspectOnly
@@ -537,6 +540,7 @@ function run(inspectOnly, indices, positions, options) {
             result.indices = target;
             result.flipped = copyOut(e, Uint8Array, flippedPointer, triangles);
             result.patchConfidence = copyOut(e, Float32Array, confidencePointer, Math.min(report.mesh.patches, triangles));
+            result.patchEvidence = copyOut(e, Uint8Array, evidencePointer, Math.min(report.mesh.patches, triangles));
         }
         if (componentCapacity)
             result.components = readComponents(e, componentPointer, Math.min(report.mesh.components, componentCapacity));
@@ -553,6 +557,7 @@ function orient(indices, positions, options) {
         summary: result.summary,
         patchIds: result.patchIds,
         patchConfidence: result.patchConfidence,
+        patchEvidence: result.patchEvidence,
         ...(result.components ? { components: result.components } : {}),
     };
 }

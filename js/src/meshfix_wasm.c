@@ -90,6 +90,8 @@ static const mfjs_line mfjs_lines[] = {
     MFJS_FIELD(meshfix_outputs, patch_confidence_capacity)
     MFJS_FIELD(meshfix_outputs, components)
     MFJS_FIELD(meshfix_outputs, components_capacity)
+    MFJS_FIELD(meshfix_outputs, patch_evidence)
+    MFJS_FIELD(meshfix_outputs, patch_evidence_capacity)
     MFJS_STRUCT(meshfix_component)
     MFJS_FIELD(meshfix_component, first_triangle)
     MFJS_FIELD(meshfix_component, triangles)

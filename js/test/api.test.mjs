@@ -111,6 +111,9 @@ await test('orient: the README\'s tetrahedron, 1 triangle flipped, the same as i
         problems.push(`verdict ${r.report.verdict}, flipped ${Array.from(r.flipped)}`);
     if (!(r.indices instanceof Uint32Array) || r.patchIds.length !== 4 || r.patchConfidence.length !== 1)
         problems.push('result arrays of the wrong type or length');
+    // one closed patch alone: decided by its volume (MESHFIX_EVIDENCE_VOLUME)
+    if (!(r.patchEvidence instanceof Uint8Array) || r.patchEvidence.length !== 1 || r.patchEvidence[0] !== 1)
+        problems.push(`patchEvidence ${r.patchEvidence && Array.from(r.patchEvidence)}`);
     if (r.report.mesh.triangles !== 4 || r.report.mesh.componentsClosed !== 1 || !(r.report.mesh.signedVolume > 0))
         problems.push(`report.mesh ${JSON.stringify(r.report.mesh)}`);
     return problems;
