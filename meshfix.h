@@ -4712,20 +4712,27 @@ MESHFIX__PRIVATE double meshfix__pair_coherence(meshfix__merge *g, const meshfix
 #define MESHFIX__JOIN_STRENGTH 0.9
 #define MESHFIX__BOTH_WAYS 0.5
 
-/* Around an edge of three or more triangles, the order of the faces is
-   all that relates them (a slot whose walls lie on each other, a fin, two
-   parts meeting at an edge): such a pair alone turns a member over only
+/* A weak pair: paired one way only (the edges of one found the other's,
+   whose own partners lie elsewhere: a part touching another, or a seam of
+   long slivers along short edges), or related only around edges of three
+   or more triangles (a slot whose walls lie on each other, a fin). It
+   joins members as they are wound; it turns one against the other only
    when both sides' own crossings say where they face. */
-MESHFIX__PRIVATE int meshfix__ring_may_join(const meshfix__merge *g, const meshfix__pair *p, unsigned int a,
-                                           unsigned int b, unsigned int flip)
-{
-    return !p->ring || !flip || (g->side != NULL && g->side[a] != 0 && g->side[b] != 0);
-}
+MESHFIX__PRIVATE int meshfix__weak_may_join(const meshfix__merge *g, const meshfix__pair *p, unsigned int a,
+                                           unsigned int b, unsigned int flip);
 
 MESHFIX__PRIVATE int meshfix__paired_both_ways(const meshfix__pair *p)
 {
     double least = p->from_a < p->from_b ? p->from_a : p->from_b, most = p->from_a < p->from_b ? p->from_b : p->from_a;
     return least >= MESHFIX__BOTH_WAYS * most && most > 0;
+}
+
+MESHFIX__PRIVATE int meshfix__weak_may_join(const meshfix__merge *g, const meshfix__pair *p, unsigned int a,
+                                           unsigned int b, unsigned int flip)
+{
+    if (!p->ring && meshfix__paired_both_ways(p))
+        return 1;
+    return !flip || (g->side != NULL && g->side[a] != 0 && g->side[b] != 0);
 }
 MESHFIX__PRIVATE size_t meshfix__merge_by_coherence(meshfix__merge *g, const meshfix__pair *pairs, size_t count)
 {
@@ -4734,8 +4741,7 @@ MESHFIX__PRIVATE size_t meshfix__merge_by_coherence(meshfix__merge *g, const mes
         unsigned int a, b;
         double c = meshfix__pair_coherence(g, &pairs[i], &a, &b);
         if (a == b || !(pairs[i].length > 0) || MESHFIX_FABS(c) <= MESHFIX__JOIN_STRENGTH * pairs[i].length ||
-            !meshfix__paired_both_ways(&pairs[i]) || !meshfix__ring_may_join(g, &pairs[i], a, b, c < 0) ||
-            meshfix__anchors_conflict(g, a, b, c < 0))
+            !meshfix__weak_may_join(g, &pairs[i], a, b, c < 0) || meshfix__anchors_conflict(g, a, b, c < 0))
             continue;
         meshfix__join(g, a, b, 0, c < 0);
         joins++;
