@@ -5366,14 +5366,14 @@ MESHFIX__PRIVATE void meshfix__shell_evidence(const meshfix__geometry *g, unsign
     inside = meshfix__measure(g, index, u, MESHFIX_EVIDENCE_VOLUME, authored ? MESHFIX__WEIGHT_WEAK : MESHFIX__WEIGHT_STRONG,
                               -side, list, n, meshfix__ray_cap(g, u, total_area));
     /* inside: unless it crosses a shell (asked only now: it costs a ray per edge) */
-    if (inside > 0 && meshfix__crosses_a_shell(g, index)) {
+    if (inside > 0 && meshfix__crosses_a_shell(g, index))
         inside = -1.0;
+    u->cavity = (unsigned char)(inside - g->sigma * u->error > 0);
+    if (!u->cavity) { /* not surely inside (a part in a pocket sees out): its volume, at full weight */
         u->mean = side;
         u->error = 0.0;
+        u->weight = MESHFIX__WEIGHT_STRONG;
     }
-    u->cavity = (unsigned char)(inside - g->sigma * u->error > 0);
-    if (!u->cavity)
-        u->weight = MESHFIX__WEIGHT_STRONG; /* outside every shell: its volume, at full weight */
 }
 
 /* An open unit (AUTO): the first kind of evidence that is significant,
