@@ -4709,7 +4709,8 @@ MESHFIX__PRIVATE double meshfix__pair_coherence(meshfix__merge *g, const meshfix
    input is wound, so the units and their members' relative turns are the
    same for any winding of the input, and a second repair finds what the
    first left. Returns the joins. */
-#define MESHFIX__JOIN_STRENGTH 0.9
+#define MESHFIX__JOIN_STRENGTH 0.8
+#define MESHFIX__TURN_STRENGTH 0.9 /* a join that turns one side against the other, neither side known */
 #define MESHFIX__BOTH_WAYS 0.5
 
 /* A weak pair: paired one way only (the edges of one found the other's,
@@ -4734,13 +4735,22 @@ MESHFIX__PRIVATE int meshfix__weak_may_join(const meshfix__merge *g, const meshf
         return 1;
     return !flip || (g->side != NULL && g->side[a] != 0 && g->side[b] != 0);
 }
+/* How closely a pair's edges must run along each other (|c| / l): a join
+   that turns one side against the other while neither side's own
+   evidence is known asks for edges within a few degrees; the rest, 0.8. */
+MESHFIX__PRIVATE double meshfix__join_strength(const meshfix__merge *g, unsigned int a, unsigned int b, unsigned int flip)
+{
+    int known = g->side != NULL && (g->side[a] != 0 || g->side[b] != 0 || g->normals[a] != 0 || g->normals[b] != 0);
+    return flip && !known ? MESHFIX__TURN_STRENGTH : MESHFIX__JOIN_STRENGTH;
+}
+
 MESHFIX__PRIVATE size_t meshfix__merge_by_coherence(meshfix__merge *g, const meshfix__pair *pairs, size_t count)
 {
     size_t i, joins = 0;
     for (i = 0; i < count; ++i) {
         unsigned int a, b;
         double c = meshfix__pair_coherence(g, &pairs[i], &a, &b);
-        if (a == b || !(pairs[i].length > 0) || MESHFIX_FABS(c) <= MESHFIX__JOIN_STRENGTH * pairs[i].length ||
+        if (a == b || !(pairs[i].length > 0) || MESHFIX_FABS(c) <= meshfix__join_strength(g, a, b, c < 0) * pairs[i].length ||
             !meshfix__weak_may_join(g, &pairs[i], a, b, c < 0) || meshfix__anchors_conflict(g, a, b, c < 0))
             continue;
         meshfix__join(g, a, b, 0, c < 0);
