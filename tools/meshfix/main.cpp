@@ -39,6 +39,7 @@ const char *const usage_text =
     "  --up AXIS         x, y, z, -x, -y or -z: the axis of --policy up (default z)\n"
     "  --weld TOLERANCE  treat vertices closer than TOLERANCE as one (soups, CAD exports)\n"
     "  --fix-normals     negate flat normals (used by one face) that point away from their face\n"
+    "  --ignore-normals  decide by geometry alone: the file's normals are not evidence\n"
     "  --mark FILE.ply   also write the mesh with face colours: flipped red, doubtful amber;\n"
     "                    with several inputs, a directory for one FILE.ply per input\n"
     "  --inspect         report only; with --mark, mark what a repair would flip\n"
@@ -150,6 +151,8 @@ int parse(int argc, char **argv, CommandLine &c)
             s.jobs = (unsigned)n;
         } else if (a == "--fix-normals") {
             s.fix_normals = true;
+        } else if (a == "--ignore-normals") {
+            s.ignore_normals = true;
         } else if (a == "--inspect") {
             s.inspect = true;
         } else if (a == "--check") {
@@ -168,6 +171,8 @@ int parse(int argc, char **argv, CommandLine &c)
     }
     if (positional.empty())
         return fail_usage("no input (meshfix --help)");
+    if (s.ignore_normals && s.policy == MESHFIX_POLICY_NORMALS)
+        return fail_usage("--policy normals decides by the file's normals: not with --ignore-normals");
     if (!s.inspect && c.output_dir.empty()) {
         if (positional.size() != 2)
             return fail_usage(positional.size() == 1 ? "no output: give INPUT OUTPUT, -o DIRECTORY or --inspect"

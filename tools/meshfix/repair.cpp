@@ -23,9 +23,9 @@ meshfix_options options_for(const Unit &u, const Settings &s)
         o.weld_tolerance = s.weld_tolerance;
     }
     /* the file's own normals are evidence of which way it was meant to face */
-    if (!u.triangle_normals.empty())
+    if (!u.triangle_normals.empty() && !s.ignore_normals)
         o.evidence.triangle_normals = u.triangle_normals.data();
-    if (!u.vertex_normals.empty())
+    if (!u.vertex_normals.empty() && !s.ignore_normals)
         o.evidence.vertex_normals = u.vertex_normals.data();
     return o;
 }

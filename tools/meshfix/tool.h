@@ -21,6 +21,7 @@ struct Settings {
     std::string up_name = "z";
     float weld_tolerance = -1.0f; /* < 0: topology from bit-identical positions */
     bool fix_normals = false;
+    bool ignore_normals = false; /* the file's normals are not passed as evidence */
     bool inspect = false; /* --inspect or --check: nothing written but --mark */
     bool check = false;   /* --check: exit status 3 when something is wrong */
     bool json = false;
