@@ -83,6 +83,20 @@ void scene_free(scene *s);
 /* Area of triangle t (double precision). */
 double scene_triangle_area(const mio_mesh *m, size_t t);
 
+/* A scene cut the way real exports are: into k unwelded patches grown
+   from k random seed triangles (gen_cut), the seams exact (the copies
+   stay, joined again by position), gapped (every copy 3% of the way to
+   its patch's middle) or jittered (each seam copy moved 0.5 to 1 x
+   `jitter` of the diagonal in a random direction: gaps and overlaps).
+   Truth and parts carry over; `out` is a scene of its own (scene_free). */
+typedef enum scene_seams { SCENE_SEAMS_EXACT, SCENE_SEAMS_GAP, SCENE_SEAMS_JITTER } scene_seams;
+int scene_cut_as_exported(const scene *in, scene *out, unsigned k, scene_seams seams, double jitter,
+                          unsigned long long seed);
+/* The trust suite's corruption of a cut scene: a random half of its
+   patches reversed whole, then each triangle with probability 0.02;
+   `indices` and `truth` (copies of the scene's) are changed. */
+void scene_corrupt_cut(const scene *s, unsigned int *indices, unsigned char *truth, unsigned long long seed);
+
 /* The corruptions a scene is repaired from, each keeping the truth. Some
    leave no trace of which side of a flat sheet was meant: there, flat
    parts are left out of the score (`scored`). */
@@ -744,6 +758,39 @@ double scene_triangle_area(const mio_mesh *m, size_t t)
     n[2] = u[0] * v[1] - u[1] * v[0];
     return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
+int scene_cut_as_exported(const scene *in, scene *out, unsigned k, scene_seams seams, double jitter,
+                          unsigned long long seed)
+{
+    size_t n = in->mesh.index_count / 3;
+    scene_init(out);
+    out->patch = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
+    out->truth = (unsigned char *)malloc(n + 1);
+    out->part = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
+    if (out->patch == NULL || out->truth == NULL || out->part == NULL) {
+        scene_free(out);
+        return 0;
+    }
+    out->patches = seams == SCENE_SEAMS_GAP
+                       ? gen_cut(&out->mesh, out->patch, &in->mesh, k, SCENE_CUT_GAP, seed)
+                       : gen_cut_jittered(&out->mesh, out->patch, &in->mesh, k, seams == SCENE_SEAMS_JITTER ? jitter : 0.0,
+                                          seed);
+    memcpy(out->truth, in->truth, n);
+    memcpy(out->part, in->part, n * sizeof(unsigned int));
+    out->part_count = in->part_count;
+    memcpy(out->parts, in->parts, sizeof(in->parts));
+    if (out->patches == 0)
+        scene_free(out);
+    return out->patches != 0;
+}
+
+void scene_corrupt_cut(const scene *s, unsigned int *indices, unsigned char *truth, unsigned long long seed)
+{
+    mio_mesh m = s->mesh;
+    m.indices = indices;
+    gen_reverse_patches(&m, truth, s->patch, 0.5, seed ^ 0xA5A5ull);
+    gen_reverse_random(&m, truth, 0.02, seed ^ 0x5A5Aull);
+}
+
 const scene_corruption SCENE_CORRUPTIONS[SCENE_CORRUPTION_COUNT] = {
     {"correct", SCENE_KEEP, 0, 0},      {"shuffled", SCENE_SHUFFLE, 0, 0},     {"inside-out", SCENE_INSIDE_OUT, 0, 1},
     {"patches", SCENE_PATCHES, 0.5, 1}, {"random-0.3", SCENE_RANDOM, 0.3, 0}, {"random-0.5", SCENE_RANDOM, 0.5, 1},

@@ -380,11 +380,70 @@ static void test_min_confidence(void)
     scene_free(&s);
 }
 
+/* The trust suite's families, cut the way real exports are (tests/scenes.h,
+   scene_cut_as_exported): many closed buildings that touch, a solid with
+   a cavity, shells through each other, a machined part; 16 and 256
+   patches, seams exact and jittered (gaps and overlaps). As cut nothing
+   flips; corrupted (half the patches reversed, then 2% of the triangles)
+   every triangle comes back. */
+static void test_cut_families(void)
+{
+    static const char *names[] = {"city", "cavity_box", "crossing", "cad_part"};
+    static const unsigned ks[] = {16, 256};
+    static const scene_seams seams[] = {SCENE_SEAMS_EXACT, SCENE_SEAMS_JITTER};
+    size_t i, k, j, t;
+    for (i = 0; i < sizeof(names) / sizeof(names[0]); ++i) {
+        scene base;
+        CHECK(scene_build(&base, names[i], SCENE_SMALL) == 1);
+        for (k = 0; k < 2; ++k)
+            for (j = 0; j < 2; ++j) {
+                scene cut;
+                meshfix_report r;
+                size_t n, right = 0;
+                unsigned int *out, *indices;
+                unsigned char *truth;
+                unsigned long long seed = 9000 + 100 * i + 10 * k + j;
+                CHECK(scene_cut_as_exported(&base, &cut, ks[k], seams[j], 1e-4, seed));
+                n = cut.mesh.index_count / 3;
+                out = repair(&cut.mesh, NULL, &r);
+                if (r.triangles_flipped != 0)
+                    printf("    %s, %u patches, %s seams, as cut: %lu flipped\n", names[i], ks[k], j ? "jittered" : "exact",
+                           (unsigned long)r.triangles_flipped);
+                CHECK_EQ(r.triangles_flipped, 0);
+                free(out);
+                indices = (unsigned int *)malloc(cut.mesh.index_count * sizeof(unsigned int) + 4);
+                truth = (unsigned char *)malloc(n + 1);
+                memcpy(indices, cut.mesh.indices, cut.mesh.index_count * sizeof(unsigned int));
+                memcpy(truth, cut.truth, n);
+                scene_corrupt_cut(&cut, indices, truth, seed);
+                {
+                    mio_mesh corrupted = cut.mesh;
+                    corrupted.indices = indices;
+                    out = repair(&corrupted, NULL, &r);
+                    check_counts(&r);
+                    for (t = 0; t < n; ++t)
+                        right += (size_t)((truth[t] != 0) != (out[3 * t + 1] != indices[3 * t + 1]));
+                }
+                if (right != n)
+                    printf("    %s, %u patches, %s seams, corrupted: %lu of %lu right\n", names[i], ks[k],
+                           j ? "jittered" : "exact", (unsigned long)right, (unsigned long)n);
+                CHECK_EQ(right, n);
+                free(out);
+                free(indices);
+                free(truth);
+                scene_free(&cut);
+            }
+        scene_free(&base);
+    }
+}
+
 static const test_case tests[] = {
     {"a flat quad and a terrain facing up come back unchanged", test_quad_and_terrain},
     {"motor.stl (occt-misc, 13 touching bodies): zero flips", test_motor},
     {"real models consistent as shipped: unchanged; closed ones inside out: restored", test_real_models_unchanged},
     {"generated scenes: correct unchanged, every clear corruption restored", test_scenes},
+    {"city, cavity, crossing shells, CAD part cut as exported (16/256 patches, exact/jittered seams): kept, restored",
+     test_cut_families},
     {"same verdicts for any triangle order and any amount reversed", test_order_and_amount},
     {"authored normals: an inward drum kept, half reversed restored to them", test_authored_normals},
     {"min_confidence leaves doubtful patches as their majority faces", test_min_confidence},

@@ -130,27 +130,9 @@ static int parse(int argc, char **argv, settings *s)
     return 1;
 }
 
-/* The scene cut into k patches with seams of the given kind; truth and
-   part carry over (the cut keeps triangles in order and wound as they
-   were). 0 when out of memory. */
-static int cut_scene(const scene *in, scene *out, unsigned k, const char *seams, double jitter, unsigned long long seed)
+static scene_seams seams_of(const char *name)
 {
-    size_t n = in->mesh.index_count / 3;
-    memset(out, 0, sizeof(*out));
-    out->patch = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
-    out->truth = (unsigned char *)malloc(n + 1);
-    out->part = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
-    if (out->patch == NULL || out->truth == NULL || out->part == NULL)
-        return 0;
-    out->patches = strcmp(seams, "gap") == 0
-                       ? gen_cut(&out->mesh, out->patch, &in->mesh, k, 0.03f, seed)
-                       : gen_cut_jittered(&out->mesh, out->patch, &in->mesh, k, strcmp(seams, "jitter") == 0 ? jitter : 0.0,
-                                          seed);
-    memcpy(out->truth, in->truth, n);
-    memcpy(out->part, in->part, n * sizeof(unsigned int));
-    out->part_count = in->part_count;
-    memcpy(out->parts, in->parts, sizeof(in->parts));
-    return out->patches != 0;
+    return strcmp(name, "gap") == 0 ? SCENE_SEAMS_GAP : strcmp(name, "jitter") == 0 ? SCENE_SEAMS_JITTER : SCENE_SEAMS_EXACT;
 }
 
 static double now_ms(void)
@@ -278,8 +260,8 @@ int main(int argc, char **argv)
                 unsigned int *indices = (unsigned int *)malloc(base.mesh.index_count * sizeof(unsigned int) + 1);
                 unsigned char *truth = (unsigned char *)malloc(n + 1);
                 score sc;
-                mio_mesh corrupted;
-                if (indices == NULL || truth == NULL || !cut_scene(&base, &cut, st.ks[a], st.seams[b], st.jitter, seed)) {
+                if (indices == NULL || truth == NULL ||
+                    !scene_cut_as_exported(&base, &cut, st.ks[a], seams_of(st.seams[b]), st.jitter, seed)) {
                     fprintf(stderr, "trust_eval: out of memory\n");
                     return 2;
                 }
@@ -291,10 +273,7 @@ int main(int argc, char **argv)
                 add_score(&total[0], &sc);
                 memcpy(indices, cut.mesh.indices, base.mesh.index_count * sizeof(unsigned int));
                 memcpy(truth, cut.truth, n);
-                corrupted = cut.mesh;
-                corrupted.indices = indices;
-                gen_reverse_patches(&corrupted, truth, cut.patch, 0.5, seed ^ 0xA5A5ull);
-                gen_reverse_random(&corrupted, truth, 0.02, seed ^ 0x5A5Aull);
+                scene_corrupt_cut(&cut, indices, truth, seed);
                 if (!repair(&cut, indices, truth, st.policy, &sc))
                     return 2;
                 print_row(&st, st.scenes[i], st.ks[a], st.seams[b], "corrupted", &sc);
