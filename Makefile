@@ -87,7 +87,13 @@ test: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES:%=$(
       $(B)/test_openmesh
 	@CC="$(CC)" CXX="$(CXX)" MAKE="$(MAKE)" bash tests/run_all.sh
 
-bench: $(B)/bench $(B)/stl_truth $(B)/scenes_eval
+$(B)/trust_eval: tests/eval/trust_eval.c tests/scenes.h $(HEADERS) | $(B)
+	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/trust_eval.c -lm
+
+$(B)/models_eval: tests/eval/models_eval.c $(HEADERS) | $(B)
+	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/models_eval.c -lm
+
+bench: $(B)/bench $(B)/stl_truth $(B)/scenes_eval $(B)/trust_eval $(B)/models_eval
 	$(B)/bench --build $(B) $(BENCH_ARGS)
 
 clean:
