@@ -418,7 +418,9 @@ typedef struct meshfix_evidence_counts {
     size_t patches_by_visibility; /* rays escaping from one side */
     size_t patches_by_normals;    /* the caller's normals */
     size_t patches_kept;          /* no significant evidence (or a policy's own rule) */
-    size_t shells_inward;         /* closed shells found to be cavities */
+    size_t shells_inward;         /* closed (or gapped but closed) shells left facing in: cavities, and shells
+                                     whose winding and normals keep them in (a room); geometry alone turns the
+                                     rest out */
     size_t rays_cast;
     size_t patch_pairs;           /* VISIBILITY: pairs of patches with a coherence */
     size_t patches_merged;        /* VISIBILITY: merges into super-patches */
@@ -3540,6 +3542,7 @@ typedef struct meshfix__unit {
     float box[6];              /* in the frame */
     unsigned char closed;      /* MESHFIX__CLOSED, MESHFIX__NEARLY_CLOSED, MESHFIX__GAPPED, MESHFIX__OPEN */
     unsigned char cavity;
+    signed char outward;       /* closed or nearly closed: +1 when its frame faces out of its own surface */
     unsigned char reversed_prior; /* a unit of a reversed scene: its majority is likely wrong */
     unsigned char kind;        /* a meshfix_evidence: what gave `mean` */
     double mean, error, weight; /* geometric vote for the frame's side in [-1, 1], its standard error, its weight */
@@ -5365,6 +5368,7 @@ MESHFIX__PRIVATE void meshfix__shell_evidence(const meshfix__geometry *g, unsign
     unsigned int list[MESHFIX__MOST_ENCLOSERS], n = meshfix__enclosers(g, index, list);
     double side = (u->closed == MESHFIX__CLOSED ? u->volume : u->mean) > 0 ? 1.0 : -1.0, inside;
     int authored;
+    u->outward = (signed char)side;
     u->kind = MESHFIX_EVIDENCE_VOLUME;
     u->weight = MESHFIX__WEIGHT_STRONG;
     u->mean = side;
@@ -5580,6 +5584,19 @@ MESHFIX__PRIVATE int meshfix__sample_escape(const meshfix__geometry *g, unsigned
 }
 /* ===== >>decide ===== */
 
+/* A patch's turn, start to end. The policy's traits (meshfix__policies)
+   say whether it needs the geometric stage. If it does (AUTO, OUTWARD,
+   VISIBILITY), meshfix__decide_by_geometry (>>geometry) forms units,
+   gathers their evidence (>>members, >>evidence) and decides each unit
+   (meshfix__decide_unit, or VISIBILITY's merge); meshfix__apply_units
+   writes every member's turn, confidence and evidence once, with
+   meshfix__decide. Then, for every policy, meshfix__patch_verdict reads
+   that decision or, for the policies that decide patch by patch (SEED,
+   MAJORITY, SDF, UP, NORMALS, and one closed shell alone), makes it with
+   meshfix__decide_patch; min_confidence is applied there, and only there;
+   meshfix__turn_patch marks the triangles. The report (>>report) counts
+   what was decided and never decides. */
+
 /* One verdict per policy. Every policy weighs a unit (a patch, or for
    AUTO, OUTWARD and VISIBILITY a super-patch) from what it knows: its
    area facing each way as given (the prior), and the evidence the policy
@@ -5681,6 +5698,47 @@ MESHFIX__PRIVATE void meshfix__apply_units(meshfix__geometry *g)
         const meshfix__unit *u = &g->units[g->patch_unit[p]];
         meshfix__decide(m, p, g->patch_turn[p] ^ u->turn, u->confidence, u->kind);
     }
+}
+
+/* The verdict of patch p: the geometric policies decided it per unit
+   before; the others decide it here from its sums. A verdict less
+   confident than min_confidence leaves the patch facing the way most of
+   its area faces. */
+MESHFIX__PRIVATE void meshfix__patch_verdict(const meshfix__mesh *m, unsigned int p, int policy,
+                                            const meshfix__patch_sums *s, meshfix__unit *u)
+{
+    const meshfix_options *o = m->options;
+    double sigma = (double)o->evidence.sigma;
+    if (m->patch_bits[p] & MESHFIX__PATCH_DECIDED) {
+        meshfix__patch_unit(s, u);
+        u->turn = (m->patch_bits[p] & MESHFIX__PATCH_FLIP) != 0;
+        u->confidence = m->confidence[p];
+        u->kind = m->patch_kind[p];
+    } else {
+        meshfix__decide_patch(m, p, policy, s, sigma, u);
+    }
+    if (u->confidence < o->evidence.min_confidence) {
+        u->turn = s->weight_kept < s->weight_reversed;
+        u->kind = MESHFIX_EVIDENCE_NONE;
+    }
+}
+
+/* Marks the triangles of patch p that the verdict turns (each relative to
+   its patch's consistent frame; SDF per triangle by its own gradient);
+   returns how many flip. */
+MESHFIX__PRIVATE size_t meshfix__turn_patch(meshfix__mesh *m, unsigned int p, int policy, unsigned int turn,
+                                           meshfix_report *r)
+{
+    size_t i, flipped = 0;
+    for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
+        unsigned int t = m->queue[i];
+        unsigned int flip = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ^ turn;
+        if (policy == MESHFIX_POLICY_SDF)
+            flip = meshfix__sdf_flip(m, t, flip, r);
+        m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | (flip ? MESHFIX__TRI_FLIP : 0u));
+        flipped += flip;
+    }
+    return flipped;
 }
 
 /* ===== >>geometry ===== */
@@ -5828,7 +5886,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     for (u = 0; u < g->unit_count; ++u) {
         const meshfix__unit *x = &g->units[u];
         meshfix__decide_unit(&g->units[u], g->sigma);
-        r->evidence.shells_inward += x->cavity;
+        r->evidence.shells_inward += (size_t)(x->outward * (x->turn ? -1 : 1) < 0);
         r->evidence.rays_cast += x->rays;
         MESHFIX_TRACE(("meshfix: unit %u: area %g, as given %g / %g, volume %g, closed %d, unmatched %g of %g; "
                        "evidence %d: %.3f +- %.3f x %g; turn %u, confidence %.2f%s\n",
@@ -6234,29 +6292,6 @@ MESHFIX__PRIVATE void meshfix__add_patch_to_component(const meshfix__mesh *m, un
 }
 
 
-/* The verdict of patch p: the geometric policies decided it per unit
-   before; the others decide it here from its sums. A verdict less
-   confident than min_confidence leaves the patch facing the way most of
-   its area faces. */
-MESHFIX__PRIVATE void meshfix__patch_verdict(const meshfix__mesh *m, unsigned int p, int policy,
-                                            const meshfix__patch_sums *s, meshfix__unit *u)
-{
-    const meshfix_options *o = m->options;
-    double sigma = (double)o->evidence.sigma;
-    if (m->patch_bits[p] & MESHFIX__PATCH_DECIDED) {
-        meshfix__patch_unit(s, u);
-        u->turn = (m->patch_bits[p] & MESHFIX__PATCH_FLIP) != 0;
-        u->confidence = m->confidence[p];
-        u->kind = m->patch_kind[p];
-    } else {
-        meshfix__decide_patch(m, p, policy, s, sigma, u);
-    }
-    if (u->confidence < o->evidence.min_confidence) {
-        u->turn = s->weight_kept < s->weight_reversed;
-        u->kind = MESHFIX_EVIDENCE_NONE;
-    }
-}
-
 MESHFIX__PRIVATE void meshfix__count_verdict(const meshfix__unit *u, size_t triangles, double area, double doubtful,
                                             meshfix_report *r)
 {
@@ -6272,8 +6307,9 @@ MESHFIX__PRIVATE void meshfix__count_verdict(const meshfix__unit *u, size_t tria
     }
 }
 
-/* Turns each patch as the policy decides (policy < 0: inspect, no turns),
-   marks the flipped triangles, and sums the report's totals as returned. */
+/* Each patch: its sums, its verdict (>>decide: meshfix__patch_verdict,
+   meshfix__turn_patch; policy < 0: inspect, no turns), and the report's
+   totals as returned. */
 MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, const meshfix_options *o,
                                               meshfix_report *r)
 {
@@ -6281,7 +6317,7 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
     MESHFIX_MEMSET(m->component_bits, 0, m->component_count);
     for (p = 0; p < m->patch_count; ++p) {
         meshfix__patch_sums s;
-        unsigned int i, turn = 0, bits = m->patch_bits[p];
+        unsigned int turn = 0, bits = m->patch_bits[p];
         size_t flipped = 0;
         double volume;
         meshfix_component *out = meshfix__component_out(m, m->patch_link[p]);
@@ -6297,20 +6333,16 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
             if (m->outputs->patch_evidence != NULL && p < m->outputs->patch_evidence_capacity)
                 m->outputs->patch_evidence[p] = verdict.kind;
             turn = verdict.turn;
-            for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
-                unsigned int t = m->queue[i];
-                unsigned int flip = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ^ turn;
-                if (policy == MESHFIX_POLICY_SDF)
-                    flip = meshfix__sdf_flip(m, t, flip, r);
-                m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | (flip ? MESHFIX__TRI_FLIP : 0u));
-                flipped += flip;
-            }
+            flipped = meshfix__turn_patch(m, p, policy, turn, r);
             r->triangles_flipped += flipped;
             r->patches_flipped += (size_t)(flipped != 0);
         }
         volume = policy < 0 ? s.volume_given : turn ? -s.volume_relative : s.volume_relative;
         if (!meshfix__is_closed_orientable(m, p))
             volume = 0.0;
+        /* a shell decided alone (the geometric stage counts its units) */
+        if (policy >= 0 && !(bits & MESHFIX__PATCH_DECIDED) && volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area))
+            r->evidence.shells_inward++;
         r->mesh.triangles_zero_area += s.zero_area;
         r->mesh.area += s.area;
         r->mesh.signed_volume += volume;

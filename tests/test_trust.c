@@ -308,11 +308,29 @@ static void test_authored_normals(void)
     memset(&o, 0, sizeof(o));
     out = repair(&g, NULL, &r);
     CHECK_EQ(r.triangles_flipped, n); /* geometry alone: outward */
+    CHECK_EQ(r.evidence.shells_inward, 0);
     free(out);
     o.evidence.triangle_normals = normals;
     out = repair(&g, &o, &r);
-    CHECK_EQ(r.triangles_flipped, 0); /* the normals agree with the winding: kept */
+    CHECK_EQ(r.triangles_flipped, 0); /* the normals agree with the winding: kept, a room */
+    CHECK_EQ(r.evidence.shells_inward, 1);
     free(out);
+    {
+        /* the same room cut into 40 unwelded patches (one unit): kept by its normals, counted facing in */
+        mio_mesh cut;
+        unsigned int *patch = (unsigned int *)malloc(n * sizeof(unsigned int) + 4);
+        CHECK(gen_cut_jittered(&cut, patch, &g, 40, 1e-4, 17) != 0);
+        out = repair(&cut, &o, &r);
+        CHECK_EQ(r.triangles_flipped, 0);
+        CHECK_EQ(r.evidence.shells_inward, 1);
+        free(out);
+        out = repair(&cut, NULL, &r); /* geometry alone turns it out */
+        CHECK_EQ(r.triangles_flipped, n);
+        CHECK_EQ(r.evidence.shells_inward, 0);
+        free(out);
+        free(patch);
+        mio_free(&cut);
+    }
     gen_reverse_random(&g, NULL, 0.5, 3);
     out = repair(&g, &o, &r);
     CHECK(memcmp(out, inward, g.index_count * sizeof(unsigned int)) == 0);

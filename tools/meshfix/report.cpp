@@ -54,7 +54,7 @@ std::string evidence_text(const meshfix_report &r)
     if (e.rays_cast != 0)
         s += format("; %lu rays", n(e.rays_cast));
     if (e.shells_inward != 0)
-        s += format("; %lu cavities", n(e.shells_inward));
+        s += format("; %lu shells facing in", n(e.shells_inward));
     if (r.patches_doubtful != 0)
         s += format("; doubtful %lu patches, %lu triangles", n(r.patches_doubtful), n(r.triangles_doubtful));
     return s + "\n";
