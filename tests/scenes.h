@@ -709,7 +709,7 @@ static const scene_info SCENES[] = {
     {"assembly_sealed", scene_assembly_sealed, 20, 90, "sealed housing (hollow inward), the same parts inside only"},
     {"parts", scene_parts, 25, 130, "box, cylinder, pipe, channel, bracket, cup, housings, disc side by side"},
     {"spider", scene_spider, 0, 4, "assimp-testmodels OBJ/spider.obj: its closed parts, outward, subdivided detail times"},
-    {"city", scene_city, 10, 40, "26 buildings on a ground slab: blocks, party-wall rows, towers on podiums, touching"},
+    {"city", scene_city, 7, 40, "26 buildings on a ground slab: blocks, party-wall rows, towers on podiums, touching"},
     {"cavity_box", scene_cavity_box, 20, 150, "box 3 wide around a hollow r 1 (wound inward)"},
     {"crossing", scene_crossing, 30, 140, "a sphere, a box and a torus through each other, each outward"},
     {"cad_part", scene_cad_part, 20, 110, "machined block: two through-holes, a pocket, a slot (genus 2)"},
