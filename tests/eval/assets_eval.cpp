@@ -25,7 +25,12 @@
    Per file (percentages of the triangles with truth):
      ship%     correct as shipped;
      fix%      correct after the repair of (a);
-     damaged   correct as shipped and turned by the repair of (a);
+     damaged   correct as shipped and turned by the repair of (a); "mixed"
+               of it in patches whose other correct triangles were kept
+               (the shipped winding, normals with it, disagrees with itself
+               inside one orientable patch: no consistent repair keeps
+               both), the rest "whole" (a correct patch turned whole: the
+               repair chose the wrong side);
      half%     correct after the repair of (b);
      ms        load, repair of (a) per mode, and all of it (one thread).
    --tsv writes that table with counts; the summary gives totals (weighted
@@ -33,15 +38,24 @@
    damage, and the files whose normals disagree with their winding
    wholesale (ship% < 10).
 
+   --explain prints, for each file the repair damaged, the damaged patches
+   of the shipped repair: triangles, damaged, share correct as shipped,
+   closed or open (boundary, non-manifold and inconsistent seam edges),
+   signed volume as shipped, the evidence that decided the unit, a closed
+   patch whose box holds its box (a shell inside another), its box and
+   mean normal, and the patches whose boundary vertices come within 1e-4
+   of the unit's diagonal of its own (touching parts).
+
    Build:  make build/assets_eval
    Usage:  assets_eval [--split tune|heldout|all] [--family NAME] [--match TEXT]
-                       [--seed N] [--worst N] [--tsv FILE] [--summary FILE] [DIR]
+                       [--seed N] [--worst N] [--tsv FILE] [--summary FILE] [--explain] [DIR]
            DIR defaults to build/assets; --split defaults to tune: the
            held-out half is scored only when asked by name.
    Exit:   0; 1 for bad usage or an unreadable manifest. */
 #include "tool.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
@@ -86,7 +100,7 @@ struct Entry {
 
 /* What one mode did to one file, summed over its units. */
 struct ModeScore {
-    size_t agree_fix = 0, damaged = 0, agree_half = 0;
+    size_t agree_fix = 0, damaged = 0, damaged_mixed = 0, agree_half = 0;
     double repair_ms = 0.0;
     size_t refused = 0; /* units the library refused */
     meshfix_evidence_counts evidence{};
@@ -104,6 +118,19 @@ struct FileScore {
 };
 
 const char *const MODE_NAMES[2] = {"normals", "geometry"};
+
+double pct(size_t part, size_t whole) { return whole == 0 ? 0.0 : 100.0 * (double)part / (double)whole; }
+
+std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
+std::string fmt(const char *format, ...)
+{
+    char buffer[1024];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(buffer, sizeof(buffer), format, args);
+    va_end(args);
+    return buffer;
+}
 
 /* +1, -1, or 0 (no truth) per triangle of the unit; counts the reasons. */
 std::vector<signed char> judge(const tool::Unit &u, FileScore &s)
@@ -191,6 +218,160 @@ void add_evidence(meshfix_evidence_counts &to, const meshfix_evidence_counts &e)
     to.shells_inward += e.shells_inward;
 }
 
+bool explain = false;
+
+/* The damaged patches of one repair (--explain), as lines on stderr. */
+void explain_damage(const tool::Unit &u, const tool::UnitResult &r, const std::vector<signed char> &truth,
+                    const std::vector<unsigned char> &flip, const char *mode, const std::string &file)
+{
+    size_t n = truth.size();
+    std::map<unsigned, size_t> damaged;
+    for (size_t t = 0; t < n; ++t)
+        if (truth[t] > 0 && flip[t])
+            damaged[r.patch_ids[t]]++;
+    if (damaged.empty())
+        return;
+    /* vertices joined by position, as the library's default topology */
+    std::map<std::array<double, 3>, uint32_t> ids;
+    std::vector<uint32_t> vid(u.positions.size() / 3);
+    for (size_t v = 0; v < vid.size(); ++v)
+        vid[v] = ids.emplace(std::array<double, 3>{u.positions[3 * v], u.positions[3 * v + 1], u.positions[3 * v + 2]},
+                             (uint32_t)ids.size())
+                     .first->second;
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<size_t>> edges;
+    for (size_t t = 0; t < n; ++t)
+        for (int k = 0; k < 3; ++k) {
+            uint32_t a = vid[u.indices[3 * t + (size_t)k]], b = vid[u.indices[3 * t + (size_t)((k + 1) % 3)]];
+            if (a != b)
+                edges[{std::min(a, b), std::max(a, b)}].push_back(t);
+        }
+    struct Facts {
+        size_t triangles = 0, truth = 0, right = 0, boundary = 0, non_manifold = 0, seams = 0;
+        double volume = 0.0, area = 0.0, lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+        double normal[3] = {0, 0, 0}; /* area-weighted, as shipped */
+        std::vector<uint32_t> boundary_vertices;
+    };
+    std::map<unsigned, Facts> facts;
+    for (size_t t = 0; t < n; ++t) {
+        Facts &f = facts[r.patch_ids[t]];
+        f.triangles++;
+        f.truth += truth[t] != 0;
+        f.right += truth[t] > 0;
+        const double *a = &u.positions[3 * (size_t)u.indices[3 * t]], *b = &u.positions[3 * (size_t)u.indices[3 * t + 1]],
+                     *c = &u.positions[3 * (size_t)u.indices[3 * t + 2]];
+        f.volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                     a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+        double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, g[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double x[3] = {e[1] * g[2] - e[2] * g[1], e[2] * g[0] - e[0] * g[2], e[0] * g[1] - e[1] * g[0]};
+        f.area += 0.5 * std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        for (int i = 0; i < 3; ++i)
+            f.normal[i] += 0.5 * x[i];
+        for (const double *p : {a, b, c})
+            for (int i = 0; i < 3; ++i) {
+                f.lo[i] = std::min(f.lo[i], p[i]);
+                f.hi[i] = std::max(f.hi[i], p[i]);
+            }
+    }
+    for (const auto &e : edges) {
+        const std::vector<size_t> &ts = e.second;
+        for (size_t t : ts) {
+            Facts &f = facts[r.patch_ids[t]];
+            if (ts.size() == 1) {
+                f.boundary++;
+                f.boundary_vertices.push_back(e.first.first);
+                f.boundary_vertices.push_back(e.first.second);
+            }
+            else if (ts.size() > 2)
+                f.non_manifold++;
+            else if (r.patch_ids[ts[0]] != r.patch_ids[ts[1]])
+                f.seams++;
+        }
+    }
+    std::fprintf(stderr, "  %s [%s]%s%s: %zu patches; evidence volume %zu, parity %zu, visibility %zu, normals %zu, kept %zu,"
+                         " shells inward %zu\n",
+                 file.c_str(), mode, u.name.empty() ? "" : " unit ", u.name.c_str(), facts.size(),
+                 r.after.evidence.patches_by_volume, r.after.evidence.patches_by_parity,
+                 r.after.evidence.patches_by_visibility, r.after.evidence.patches_by_normals,
+                 r.after.evidence.patches_kept, r.after.evidence.shells_inward);
+    /* the joined vertices' positions, and the boundary vertices of every
+       patch in a grid of cells of 1e-4 of the unit's diagonal */
+    std::vector<const double *> where(ids.size());
+    for (const auto &p : ids)
+        where[p.second] = p.first.data();
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (const auto &f : facts)
+        for (int i = 0; i < 3; ++i) {
+            lo[i] = std::min(lo[i], f.second.lo[i]);
+            hi[i] = std::max(hi[i], f.second.hi[i]);
+        }
+    double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    double cell = std::max(diagonal * 1e-4, 1e-300);
+    auto key = [&](const double *p, int dx, int dy, int dz) {
+        return std::array<long long, 3>{(long long)std::floor(p[0] / cell) + dx, (long long)std::floor(p[1] / cell) + dy,
+                                        (long long)std::floor(p[2] / cell) + dz};
+    };
+    std::map<std::array<long long, 3>, std::vector<std::pair<uint32_t, unsigned>>> grid;
+    for (const auto &f : facts)
+        for (uint32_t v : f.second.boundary_vertices)
+            grid[key(where[v], 0, 0, 0)].push_back({v, f.first});
+    for (const auto &d : damaged) {
+        const Facts &f = facts[d.first];
+        /* other patches with a boundary vertex within a cell of one of its own */
+        std::map<unsigned, size_t> touching;
+        for (uint32_t v : f.boundary_vertices) {
+            std::map<unsigned, bool> seen;
+            for (int dx = -1; dx <= 1; ++dx)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dz = -1; dz <= 1; ++dz) {
+                        auto it = grid.find(key(where[v], dx, dy, dz));
+                        if (it == grid.end())
+                            continue;
+                        for (const auto &w : it->second) {
+                            const double *p = where[v], *q = where[w.first];
+                            double dd = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                                  (p[2] - q[2]) * (p[2] - q[2]));
+                            if (w.second != d.first && dd <= cell && !seen[w.second]) {
+                                seen[w.second] = true;
+                                touching[w.second]++;
+                            }
+                        }
+                    }
+        }
+        std::string near;
+        for (const auto &t : touching) {
+            const Facts &g = facts[t.first];
+            near += fmt("%s%u (%zu triangles, %.0f%% correct, %zu boundary vertices near)", near.empty() ? "" : ", ",
+                        t.first, g.triangles, pct(g.right, g.truth), t.second);
+        }
+        bool closed = f.boundary == 0 && f.non_manifold == 0 && f.seams == 0;
+        std::string inside;
+        for (const auto &o : facts) {
+            const Facts &g = o.second;
+            if (o.first == d.first || g.boundary != 0 || g.non_manifold != 0 || g.seams != 0)
+                continue;
+            bool in = true;
+            for (int i = 0; i < 3; ++i)
+                in = in && g.lo[i] <= f.lo[i] && f.hi[i] <= g.hi[i];
+            if (in && g.area > f.area) {
+                inside = fmt(", inside closed patch %u (%zu triangles)", o.first, g.triangles);
+                break;
+            }
+        }
+        std::fprintf(stderr,
+                     "    patch %u: %zu triangles, %zu damaged, %.1f%% of %zu correct as shipped, %s (boundary %zu,"
+                     " non-manifold %zu, seam %zu edge-uses), signed volume %.4g, area %.4g, confidence %.2f%s\n",
+                     d.first, f.triangles, d.second, pct(f.right, f.truth), f.truth, closed ? "closed" : "open",
+                     f.boundary, f.non_manifold, f.seams, f.volume, f.area,
+                     d.first < r.patch_confidence.size() ? r.patch_confidence[d.first] : -1.0f, inside.c_str());
+        double nl = std::sqrt(f.normal[0] * f.normal[0] + f.normal[1] * f.normal[1] + f.normal[2] * f.normal[2]);
+        std::fprintf(stderr, "      box %.4g %.4g %.4g .. %.4g %.4g %.4g, mean normal %.2f %.2f %.2f (%.2f of its area)%s%s\n",
+                     f.lo[0], f.lo[1], f.lo[2], f.hi[0], f.hi[1], f.hi[2], nl > 0 ? f.normal[0] / nl : 0.0,
+                     nl > 0 ? f.normal[1] / nl : 0.0, nl > 0 ? f.normal[2] / nl : 0.0, f.area > 0 ? nl / f.area : 0.0,
+                     near.empty() ? "" : "; boundary touches patches ", near.c_str());
+    }
+}
+
 void score_unit(const tool::Unit &shipped, size_t unit_index, unsigned seed, FileScore &s)
 {
     std::vector<signed char> truth = judge(shipped, s);
@@ -241,6 +422,18 @@ void score_unit(const tool::Unit &shipped, size_t unit_index, unsigned seed, Fil
             ms.agree_fix += right;
             ms.damaged += truth[t] > 0 && flip[t];
         }
+        if (r.status == MESHFIX_OK) {
+            /* per patch: correct triangles turned and kept */
+            std::map<unsigned, std::pair<size_t, size_t>> correct;
+            for (size_t t = 0; t < n; ++t)
+                if (truth[t] > 0)
+                    (flip[t] ? correct[r.patch_ids[t]].first : correct[r.patch_ids[t]].second)++;
+            for (const auto &c : correct)
+                if (c.second.first != 0 && c.second.second != 0)
+                    ms.damaged_mixed += c.second.first;
+        }
+        if (explain && r.status == MESHFIX_OK)
+            explain_damage(unit, r, truth, flip, MODE_NAMES[m], s.entry.stored);
 
         for (size_t t = 0; t < n; ++t)
             if (reversed_face[unit.triangle_face[t]])
@@ -281,19 +474,6 @@ FileScore score_file(const Entry &e, const std::string &dir, unsigned seed)
 
 /* ---- output ---- */
 
-double pct(size_t part, size_t whole) { return whole == 0 ? 0.0 : 100.0 * (double)part / (double)whole; }
-
-std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
-std::string fmt(const char *format, ...)
-{
-    char buffer[1024];
-    va_list args;
-    va_start(args, format);
-    std::vsnprintf(buffer, sizeof(buffer), format, args);
-    va_end(args);
-    return buffer;
-}
-
 std::string tsv_clean(std::string text)
 {
     for (char &c : text)
@@ -308,6 +488,7 @@ void write_tsv(const std::string &path, const std::vector<FileScore> &files)
     out << "file\tfamily\tsplit\tpackage\tunits\ttriangles\ttruth\tship_pct\t"
            "fix_pct_normals\tdamaged_normals\thalf_pct_normals\t"
            "fix_pct_geometry\tdamaged_geometry\thalf_pct_geometry\t"
+           "damaged_mixed_normals\tdamaged_mixed_geometry\t"
            "agree_ship\tagree_fix_normals\tagree_half_normals\tagree_fix_geometry\tagree_half_geometry\t"
            "no_truth_area\tno_truth_normal\tno_truth_split\tno_truth_oblique\t"
            "patches\tpatches_closed\tedges_boundary\tedges_non_manifold\t"
@@ -329,6 +510,7 @@ void write_tsv(const std::string &path, const std::vector<FileScore> &files)
             << fmt("%.2f", pct(s.mode[0].agree_fix, s.truth)) << '\t' << s.mode[0].damaged << '\t'
             << fmt("%.2f", pct(s.mode[0].agree_half, s.truth)) << '\t' << fmt("%.2f", pct(s.mode[1].agree_fix, s.truth))
             << '\t' << s.mode[1].damaged << '\t' << fmt("%.2f", pct(s.mode[1].agree_half, s.truth)) << '\t'
+            << s.mode[0].damaged_mixed << '\t' << s.mode[1].damaged_mixed << '\t'
             << s.agree_ship << '\t' << s.mode[0].agree_fix << '\t' << s.mode[0].agree_half << '\t' << s.mode[1].agree_fix
             << '\t' << s.mode[1].agree_half << '\t' << s.no_truth_area << '\t' << s.no_truth_normal << '\t'
             << s.no_truth_split << '\t' << s.no_truth_oblique << '\t' << s.patches << '\t' << s.patches_closed << '\t'
@@ -340,7 +522,7 @@ void write_tsv(const std::string &path, const std::vector<FileScore> &files)
 
 struct Total {
     size_t files = 0, scored = 0, failed = 0, no_truth = 0, truth = 0, agree_ship = 0;
-    size_t agree_fix[2] = {0, 0}, damaged[2] = {0, 0}, damaged_files[2] = {0, 0}, agree_half[2] = {0, 0};
+    size_t agree_fix[2] = {0, 0}, damaged[2] = {0, 0}, mixed[2] = {0, 0}, damaged_files[2] = {0, 0}, agree_half[2] = {0, 0};
     double ms = 0.0, max_ms = 0.0;
 
     void add(const FileScore &s)
@@ -362,6 +544,7 @@ struct Total {
         for (int m = 0; m < 2; ++m) {
             agree_fix[m] += s.mode[m].agree_fix;
             damaged[m] += s.mode[m].damaged;
+            mixed[m] += s.mode[m].damaged_mixed;
             damaged_files[m] += s.mode[m].damaged != 0;
             agree_half[m] += s.mode[m].agree_half;
         }
@@ -370,8 +553,8 @@ struct Total {
 
 std::string total_header()
 {
-    return "                         files  scored   truth-tris   ship%  |  normals: fix%  damaged (files)      half%"
-           "  | geometry: fix%  damaged (files)      half%  | s total  max ms\n";
+    return "                         files  scored   truth-tris   ship%  |  normals: fix%  damaged (files)   mixed   half%"
+           "  | geometry: fix%  damaged (files)   mixed   half%  | s total  max ms\n";
 }
 
 std::string total_row(const std::string &name, const Total &t)
@@ -379,8 +562,8 @@ std::string total_row(const std::string &name, const Total &t)
     std::string row = fmt("%-24s %5zu  %6zu  %11zu  %6.2f  |", name.c_str(), t.files, t.scored, t.truth,
                           pct(t.agree_ship, t.truth));
     for (int m = 0; m < 2; ++m)
-        row += fmt("  %13.2f  %7zu %5.2f%% (%3zu)  %6.2f  |", pct(t.agree_fix[m], t.truth), t.damaged[m],
-                   pct(t.damaged[m], t.truth), t.damaged_files[m], pct(t.agree_half[m], t.truth));
+        row += fmt("  %13.2f  %7zu %5.2f%% (%3zu) %6zu  %6.2f  |", pct(t.agree_fix[m], t.truth), t.damaged[m],
+                   pct(t.damaged[m], t.truth), t.damaged_files[m], t.mixed[m], pct(t.agree_half[m], t.truth));
     row += fmt(" %7.1f  %6.0f\n", t.ms / 1000.0, t.max_ms);
     return row;
 }
@@ -389,12 +572,12 @@ std::string total_row(const std::string &name, const Total &t)
 std::string one_line(const std::string &split, const Total &t)
 {
     return fmt("%s: %zu files (%zu scored, %zu without truth, %zu not loaded), %zu triangles with truth, ship %.2f%%; "
-               "normals: fix %.2f%%, damaged %zu (%.3f%%, %zu files), half %.2f%%; "
-               "geometry: fix %.2f%%, damaged %zu (%.3f%%, %zu files), half %.2f%%; %.1f s\n",
+               "normals: fix %.2f%%, damaged %zu (%.3f%%, %zu files, %zu mixed), half %.2f%%; "
+               "geometry: fix %.2f%%, damaged %zu (%.3f%%, %zu files, %zu mixed), half %.2f%%; %.1f s\n",
                split.c_str(), t.files, t.scored, t.no_truth, t.failed, t.truth, pct(t.agree_ship, t.truth),
-               pct(t.agree_fix[0], t.truth), t.damaged[0], pct(t.damaged[0], t.truth), t.damaged_files[0],
+               pct(t.agree_fix[0], t.truth), t.damaged[0], pct(t.damaged[0], t.truth), t.damaged_files[0], t.mixed[0],
                pct(t.agree_half[0], t.truth), pct(t.agree_fix[1], t.truth), t.damaged[1], pct(t.damaged[1], t.truth),
-               t.damaged_files[1], pct(t.agree_half[1], t.truth), t.ms / 1000.0);
+               t.damaged_files[1], t.mixed[1], pct(t.agree_half[1], t.truth), t.ms / 1000.0);
 }
 
 std::string summary(const std::vector<FileScore> &files, unsigned seed, size_t worst, const std::string &split)
@@ -407,7 +590,8 @@ std::string summary(const std::vector<FileScore> &files, unsigned seed, size_t w
         splits[s.entry.split].add(s);
         families[{s.entry.split, s.entry.family}].add(s);
     }
-    out += "totals (percentages of triangles with truth; damaged: correct as shipped, turned by the repair)\n";
+    out += "totals (percentages of triangles with truth; damaged: correct as shipped, turned by the repair;\n"
+           "mixed: of it, in patches whose other correct triangles were kept)\n";
     out += total_header();
     for (const auto &sp : splits) {
         out += total_row(sp.first, sp.second);
@@ -431,10 +615,10 @@ std::string summary(const std::vector<FileScore> &files, unsigned seed, size_t w
         });
         out += fmt("\nworst %zu files by damage, %s mode (%zu files damaged)\n", std::min(worst, order.size()),
                    m == 0 ? "normals as evidence" : "geometry only", order.size());
-        out += "  damaged   of truth  ship%  fix%   half%  family     file\n";
+        out += "  damaged  (mixed)  of truth  ship%  fix%   half%  family     file\n";
         for (size_t i = 0; i < order.size() && i < worst; ++i) {
             const FileScore &s = *order[i];
-            out += fmt("  %7zu  %9zu  %5.1f  %5.1f  %5.1f  %-9s  %s\n", s.mode[m].damaged, s.truth,
+            out += fmt("  %7zu  %7zu  %8zu  %5.1f  %5.1f  %5.1f  %-9s  %s\n", s.mode[m].damaged, s.mode[m].damaged_mixed, s.truth,
                        pct(s.agree_ship, s.truth), pct(s.mode[m].agree_fix, s.truth), pct(s.mode[m].agree_half, s.truth),
                        s.entry.family.c_str(), s.entry.stored.c_str());
         }
@@ -486,7 +670,7 @@ bool read_manifest(const std::string &path, std::vector<Entry> &out)
 int usage()
 {
     std::fprintf(stderr, "usage: assets_eval [--split tune|heldout|all] [--family NAME] [--match TEXT] [--seed N]\n"
-                         "                   [--worst N] [--tsv FILE] [--summary FILE] [DIR]\n");
+                         "                   [--worst N] [--tsv FILE] [--summary FILE] [--explain] [DIR]\n");
     return 1;
 }
 
@@ -526,6 +710,8 @@ int main(int argc, char **argv)
         } else if (a == "--tsv") {
             if (!value(tsv))
                 return usage();
+        } else if (a == "--explain") {
+            explain = true;
         } else if (a == "--summary") {
             if (!value(summary_path))
                 return usage();
