@@ -69,6 +69,14 @@ $(B)/bench: $(BENCH_SOURCES) tests/bench/common.h tests/internals.h $(HEADERS) |
 $(B)/stl_truth: tests/eval/stl_truth.c meshfix.h | $(B)
 	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/stl_truth.c -lm
 
+# scores the tool's repair against the normals of real assets
+# (tests/corpus/fetch_assets.sh): the tool's loaders and repair without main.cpp
+ASSETS_EVAL_SOURCES = tests/eval/assets_eval.cpp $(filter-out tools/meshfix/main.cpp,$(TOOL_SOURCES))
+
+$(B)/assets_eval: $(ASSETS_EVAL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c $(HEADERS) | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $(B)/assets_eval_libs.o tools/meshfix/libs.c
+	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -Itools/meshfix -o $@ $(ASSETS_EVAL_SOURCES) $(B)/assets_eval_libs.o -ltinygltf -pthread
+
 $(B)/scenes_eval: tests/eval/scenes_eval.c tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/scenes_eval.c -lm
 
