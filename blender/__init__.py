@@ -125,7 +125,10 @@ joined vertices, open parts and gaps"""
             me = ob.data
             selected = np.empty(len(me.polygons), bool)
             me.polygons.foreach_get("select", selected)
-            scope = selected if selected.any() else None
+            hidden = np.empty(len(me.polygons), bool)
+            me.polygons.foreach_get("hide", hidden)
+            # the selected faces, or all but the hidden ones when none is selected
+            scope = selected if selected.any() else (~hidden if hidden.any() else None)
             before = repair.loop_vertices(me)
             normals = repair.corner_normals(me)
             d = repair.decide(me, scope, **self._settings())

@@ -323,12 +323,12 @@ def read_mark(path):
     return np.all(rows["rgb"] == (255, 176, 0), axis=1)
 
 
-def cli_decide(cli, me, work, name, scope=None, normals=True):
+def cli_decide(cli, me, work, name, scope=None, normals=True, options=()):
     """The tool on the mesh written as OBJ: (faces it flipped, faces it marks doubtful), per
     polygon of the mesh (False outside scope)."""
     source, target, mark = (os.path.join(work, name + suffix) for suffix in (".obj", ".out.obj", ".mark.ply"))
     polygons = write_obj(me, source, scope, normals)
-    run = subprocess.run([cli, "--quiet", source, target, "--mark", mark], stdout=subprocess.PIPE,
+    run = subprocess.run([cli, "--quiet"] + list(options) + [source, target, "--mark", mark], stdout=subprocess.PIPE,
                          stderr=subprocess.STDOUT, universal_newlines=True)
     assert run.returncode == 0, "%s exited %d: %s" % (cli, run.returncode, run.stdout.strip()[-300:])
 
@@ -527,9 +527,10 @@ def edit_undo_check(m):
     assert after == 0, "one undo in edit mode left %d faces flipped" % after
 
 
-def edit_selection_check(m, args):
+def edit_selection_check(m, args, hide=False):
     """Edit mode on a selection: the faces on one side of the middle, the others untouched; the
-    selected ones flip as the tool flips a file of only them."""
+    selected ones flip as the tool flips a file of only them. hide: those faces hidden instead, none
+    selected: the visible ones are repaired."""
     objects, scrambled = live(m)
     put(objects, scrambled)
     total = chosen = flipped_inside = 0
@@ -545,7 +546,11 @@ def edit_selection_check(m, args):
         mask = x < np.median(x)
         if not mask.any():
             mask[:] = True
-        me.polygons.foreach_set("select", mask)
+        if hide:
+            me.polygons.foreach_set("select", np.zeros(len(mask), bool))
+            me.polygons.foreach_set("hide", ~mask)
+        else:
+            me.polygons.foreach_set("select", mask)
         masks.append(mask)
         reference.append(winding(me))
         normals.append(corner_values(me, "normal") if me.has_custom_normals else None)
@@ -564,7 +569,7 @@ def edit_selection_check(m, args):
             turned = float(np.degrees(np.arccos(np.clip(np.sum(a * b, axis=1), -1.0, 1.0).min())))
             assert turned < 1.0, "a corner's custom normal turned by %.3f degrees in edit mode" % turned
         outside = int(np.count_nonzero(flips & ~mask))
-        assert outside == 0, "%d unselected faces flipped" % outside
+        assert outside == 0, "%d %s faces flipped" % (outside, "hidden" if hide else "unselected")
         differ = int(np.count_nonzero(flips != c))
         assert differ == 0, "%d selected faces differ from the tool's on them (add-on %d, tool %d)" % (
             differ, int(flips.sum()), int(c.sum()))
@@ -572,6 +577,21 @@ def edit_selection_check(m, args):
         chosen += int(mask.sum())
         flipped_inside += int(flips.sum())
     assert flipped_inside > 0, "nothing flipped in the selection"
+
+
+def options_check(m, args, policy, weld):
+    """Policy and weld tolerance from the redo panel: the tool's --policy and --weld on the same mesh."""
+    objects, scrambled = live(m)
+    put(objects, scrambled)
+    reference = [winding(o.data) for o in objects]
+    cli = [cli_decide(args.cli, o.data, os.path.join(args.work, m.name.replace(" ", "-")), "%s%03d" % (policy, i),
+                      options=("--policy", policy, "--weld", repr(weld)))[0] for i, o in enumerate(objects)]
+    run_addon(objects, policy=policy, weld_tolerance=weld)
+    flips = [reversed_from(o.data, r) for o, r in zip(objects, reference)]
+    differ = sum(int(np.count_nonzero(f != c)) for f, c in zip(flips, cli))
+    assert differ == 0, "%d faces differ from build/meshfix --policy %s --weld %r (add-on %d, tool %d)" % (
+        differ, policy, weld, sum(int(f.sum()) for f in flips), sum(int(c.sum()) for c in cli))
+    assert sum(int(f.sum()) for f in flips) > 0, "nothing flipped"
 
 
 def min_confidence_check(m):
@@ -639,9 +659,16 @@ def main():
         if name == "spider.obj":
             check("%s: one undo step restores the input (object mode)" % name, undo_checks, m)
             check("%s: one undo step restores the input (edit mode)" % name, edit_undo_check, m)
+        if name in ("spider.obj", "motor.stl"):
+            for policy, weld in (("seed", 0.0), ("majority", 1e-4), ("outward", 1e-3)):
+                check("%s: policy %s, weld tolerance %g flip what build/meshfix --policy %s --weld %g flips" % (
+                    name, policy, weld, policy, weld), options_check, m, args, policy, weld)
         if name in ("spider.obj", "sh2.stl", "2CylinderEngine.glb"):
             check("%s: edit mode changes only the selected faces, as the tool does on them; custom normals stay" % name,
                   edit_selection_check, m, args)
+        if name == "sh2.stl":
+            check("%s: edit mode with nothing selected leaves the hidden faces, as the tool does on the others" % name,
+                  edit_selection_check, m, args, True)
         if getattr(m, "doubtful", 0) and not doubtful_checked:
             doubtful_checked = check("%s: minimum confidence 0.99 selects at least the faces doubtful at 0.5" % name,
                                      min_confidence_check, m)
