@@ -114,4 +114,14 @@ fuzz:
 sdf-demo: $(B)/sdf_demo
 	$(B)/sdf_demo $(B)/sdf_demo.obj
 
-.PHONY: all demo sdf-demo test bench fuzz clean
+# the Blender add-on (blender/): the add-on's Python with the meshfix module
+# inside, its shared library built from the header by python/build.sh
+BLENDER_ADDON = blender/__init__.py blender/repair.py blender/build.sh python/build.sh python/meshfix/__init__.py \
+                python/meshfix/_native.c meshfix.h
+
+blender-addon: $(B)/meshfix_blender.zip
+
+$(B)/meshfix_blender.zip: $(BLENDER_ADDON) | $(B)
+	sh blender/build.sh $@
+
+.PHONY: all demo sdf-demo blender-addon test bench fuzz clean
