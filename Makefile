@@ -1,4 +1,5 @@
-# meshfix.h: `make demo` shows a repair (cc and c++ only), `make test` runs every test, `make bench` measures.
+# meshfix.h: `make demo` shows a repair (cc and c++ only), `make test` installs what the tests need
+# (tests/install_deps.sh) and runs every test, `make bench` measures.
 CC ?= cc
 CXX ?= c++
 CFLAGS ?= -O2 -g
@@ -113,8 +114,15 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@echo
 	@echo "wrote $(B)/demo_fixed.obj and $(B)/demo_marked.ply (flipped faces red; open it in MeshLab or Blender)"
 
-test: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES:%=$(B)/%_asan) $(SUITES:%=$(B)/%_fast) \
-      $(B)/test_openmesh
+# `make test` installs what the suites need first (tests/install_deps.sh:
+# with apt-get as root; otherwise it names the apt-get line and stops),
+# then builds with what is installed now; `make test-only` skips that step
+test:
+	@bash tests/install_deps.sh
+	@$(MAKE) --no-print-directory test-only
+
+test-only: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES:%=$(B)/%_asan) \
+      $(SUITES:%=$(B)/%_fast) $(B)/test_openmesh
 	@CC="$(CC)" CXX="$(CXX)" MAKE="$(MAKE)" bash tests/run_all.sh
 
 bench: $(B)/bench $(B)/stl_truth $(B)/scenes_eval
@@ -130,5 +138,5 @@ fuzz:
 sdf-demo: $(B)/sdf_demo
 	$(B)/sdf_demo $(B)/sdf_demo.obj
 
-.PHONY: all demo sdf-demo test bench fuzz clean FORCE
+.PHONY: all demo sdf-demo test test-only bench fuzz clean FORCE
 FORCE:
