@@ -149,6 +149,9 @@ else
     echo "FAIL valgrind is not installed (apt-get install valgrind; make test installs it as root)"
     failed=$((failed + 1))
 fi
+echo "== make demo on a bare machine"
+check "make demo with make, cc and c++ only (no tinygltf, nlohmann json, OpenMesh, Embree, libpng, node, python): the demo repairs, a .glb is refused in one line" \
+    bash tests/test_bare_demo.sh
 echo "== command-line tool"
 check "meshfix CLI repairs the demo mesh" sh -c "build/demo_mesh $out/demo.obj >/dev/null && build/meshfix --quiet $out/demo.obj $out/fixed.ply && build/meshfix --inspect $out/fixed.ply | grep -q 'inconsistent 0' && build/meshfix --inspect $out/fixed.ply | grep -q 'inside-out 0'"
 check "meshfix CLI: one-line error, exit 1 on a bad file" sh -c "printf 'OFF\n999999999 1 0\n' > $out/bad.off; build/meshfix $out/bad.off $out/x.obj 2>$out/err.txt; test \$? -eq 1 && test \$(wc -l < $out/err.txt) -eq 1"
