@@ -1,4 +1,5 @@
-# meshfix.h: `make demo` shows a repair, `make test` runs every test, `make bench` measures.
+# meshfix.h: `make demo` shows a repair (cc and c++ only), `make test` installs what the tests need
+# (tests/install_deps.sh) and runs every test, `make bench` measures.
 CC ?= cc
 CXX ?= c++
 CFLAGS ?= -O2 -g
@@ -13,14 +14,44 @@ all: $(B)/meshfix $(B)/sdf_demo
 $(B):
 	mkdir -p $(B)
 
-# the command-line tool (tools/meshfix): C++17, glTF through Debian's
-# libtinygltf-dev (-ltinygltf); the library and the examples' loaders as C99
+# The command-line tool (tools/meshfix): C++17, the library and the
+# examples' loaders as C99; it needs nothing else. Each optional part is on
+# when $(CXX), with this build's flags, finds its headers, and off
+# otherwise; the build of the tool says once what is off and what to
+# install. `make GLTF=` leaves glTF out even where it is installed. A part
+# is a block of variables:
+#   ifndef NAME / NAME := $(call have_headers,HEADER...) / endif
+#   TOOL_FLAGS += ..., TOOL_LIBS += ...    what the tool is built with, on or off
+#   TOOL_OFF += $(if $(NAME),,NAME)        and NAME_OFF, the line said when off
+H := \#
+have_headers = $(shell printf '$(H)if !__has_include(<%s>)\n$(H)error\n$(H)endif\n' $(1) | \
+    $(CXX) $(CFLAGS) -E -x c++ - >/dev/null 2>&1 && echo yes)
+TOOL_FLAGS :=
+TOOL_LIBS :=
+TOOL_OFF :=
+
+# glTF (.gltf, .glb: tools/meshfix/gltf.cpp) through tinygltf and nlohmann json
+ifndef GLTF
+GLTF := $(call have_headers,tiny_gltf.h nlohmann/json.hpp)
+endif
+TOOL_FLAGS += $(if $(GLTF),,-DMESHFIX_TOOL_NO_GLTF)
+TOOL_LIBS += $(if $(GLTF),-ltinygltf)
+TOOL_OFF += $(if $(GLTF),,GLTF)
+GLTF_OFF = glTF support: it refuses .gltf and .glb files (glTF needs tiny_gltf.h and nlohmann/json.hpp; \
+    Debian: apt-get install libtinygltf-dev nlohmann-json3-dev)
+
 TOOL_SOURCES = $(wildcard tools/meshfix/*.cpp)
 TOOL_HEADERS = $(wildcard tools/meshfix/*.h)
 
-$(B)/meshfix: $(TOOL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c $(HEADERS) | $(B)
+$(B)/meshfix: $(TOOL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c $(HEADERS) $(B)/meshfix.options | $(B)
+	@$(foreach o,$(TOOL_OFF),echo '$@ is built without $(subst ',,$($(o)_OFF))';) :
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $(B)/meshfix_libs.o tools/meshfix/libs.c
-	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -o $@ $(TOOL_SOURCES) $(B)/meshfix_libs.o -ltinygltf -pthread
+	$(CXX) -std=c++17 $(CFLAGS) $(WARN) $(TOOL_FLAGS) -o $@ $(TOOL_SOURCES) $(B)/meshfix_libs.o $(TOOL_LIBS) -pthread
+
+# what the tool was built with: it is built again when that changes (a
+# package installed or removed)
+$(B)/meshfix.options: FORCE | $(B)
+	@[ "$$(cat $@ 2>/dev/null)" = '$(strip $(TOOL_FLAGS) $(TOOL_LIBS))' ] || echo '$(strip $(TOOL_FLAGS) $(TOOL_LIBS))' >$@
 
 $(B)/demo_mesh: examples/demo_mesh.c $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/demo_mesh.c -lm
@@ -75,7 +106,8 @@ ASSETS_EVAL_SOURCES = tests/eval/assets_eval.cpp $(filter-out tools/meshfix/main
 
 $(B)/assets_eval: $(ASSETS_EVAL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $(B)/assets_eval_libs.o tools/meshfix/libs.c
-	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -Itools/meshfix -o $@ $(ASSETS_EVAL_SOURCES) $(B)/assets_eval_libs.o -ltinygltf -pthread
+	$(CXX) -std=c++17 $(CFLAGS) $(WARN) $(TOOL_FLAGS) -Itools/meshfix -o $@ $(ASSETS_EVAL_SOURCES) $(B)/assets_eval_libs.o \
+	    $(TOOL_LIBS) -pthread
 
 $(B)/scenes_eval: tests/eval/scenes_eval.c tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/scenes_eval.c -lm
@@ -91,8 +123,15 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@echo
 	@echo "wrote $(B)/demo_fixed.obj and $(B)/demo_marked.ply (flipped faces red; open it in MeshLab or Blender)"
 
-test: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES:%=$(B)/%_asan) $(SUITES:%=$(B)/%_fast) \
-      $(B)/test_openmesh
+# `make test` installs what the suites need first (tests/install_deps.sh:
+# with apt-get as root; otherwise it names the apt-get line and stops),
+# then builds with what is installed now; `make test-only` skips that step
+test:
+	@bash tests/install_deps.sh
+	@$(MAKE) --no-print-directory test-only
+
+test-only: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES:%=$(B)/%_asan) \
+      $(SUITES:%=$(B)/%_fast) $(B)/test_openmesh
 	@CC="$(CC)" CXX="$(CXX)" MAKE="$(MAKE)" bash tests/run_all.sh
 
 $(B)/trust_eval: tests/eval/trust_eval.c tests/scenes.h $(HEADERS) | $(B)
@@ -124,4 +163,5 @@ blender-addon: $(B)/meshfix_blender.zip
 $(B)/meshfix_blender.zip: $(BLENDER_ADDON) | $(B)
 	sh blender/build.sh $@
 
-.PHONY: all demo sdf-demo blender-addon test bench fuzz clean
+.PHONY: all demo sdf-demo blender-addon test test-only bench fuzz clean FORCE
+FORCE:

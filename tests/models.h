@@ -1,8 +1,9 @@
 /* Real files for the suites: a loader that counts a missing model as a
-   failure (bash .ci/run installs the packages), and an OBJ loader that
-   builds the vertex buffer a game engine would: one interleaved vertex
-   (position, texture coordinate, normal; 32 bytes) per distinct v/vt/vn
-   corner, so a vertex is split wherever a seam of UVs or normals runs.
+   failure (make test installs the packages: tests/install_deps.sh), and
+   an OBJ loader that builds the vertex buffer a game engine would: one
+   interleaved vertex (position, texture coordinate, normal; 32 bytes) per
+   distinct v/vt/vn corner, so a vertex is split wherever a seam of UVs or
+   normals runs.
    Include check.h and examples/meshio.h first. */
 #ifndef MESHFIX_TESTS_MODELS_H
 #define MESHFIX_TESTS_MODELS_H
@@ -22,7 +23,7 @@ MODELS_MAYBE_UNUSED static int load_model(const char *path, mio_mesh *g)
     char error[256];
     if (mio_load(path, g, error, sizeof(error)))
         return 1;
-    printf("    cannot load %s: %s (bash .ci/run installs occt-misc and assimp-testmodels)\n", path, error);
+    printf("    cannot load %s: %s (make test installs occt-misc and assimp-testmodels)\n", path, error);
     failures++;
     return 0;
 }
@@ -202,7 +203,7 @@ MODELS_MAYBE_UNUSED static int engine_obj_load(const char *path, engine_mesh *e)
         e->positions = (float *)v.data, v.data = NULL;
         e->position_count = v.count;
     } else {
-        printf("    cannot load %s as an engine would (bash .ci/run installs assimp-testmodels)\n", path);
+        printf("    cannot load %s as an engine would (make test installs assimp-testmodels)\n", path);
         failures++;
         engine_free(e);
     }

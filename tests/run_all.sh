@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Runs every suite and check of `make test`, then prints one closing line
-# "N passed, N failed" over all of them. Called by the Makefile with the
-# binaries already built; CC and CXX name the compilers for the build checks.
+# "N passed, N failed, N skipped" over all of them. Called by the Makefile
+# with the binaries already built (after tests/install_deps.sh); CC and CXX
+# name the compilers for the build checks. Every check that could not run
+# here prints a "SKIP name: why" line, its own or a suite's, and is counted
+# as skipped; the SKIP lines are said again before the closing line.
 set -u
 cd "$(dirname "$0")/.."
 CC=${CC:-cc}
@@ -11,9 +14,23 @@ out=build/compile
 mkdir -p "$out"
 passed=0
 failed=0
+skipped=0
+skips=()
 
 check_log="$out/last.log"
 . tests/check.sh
+skip() { # "name: why": a check that cannot run here
+    echo "SKIP $1"
+    skipped=$((skipped + 1))
+    skips+=("$1")
+}
+count_skips() { # log: the SKIP lines a suite printed
+    local line
+    while IFS= read -r line; do
+        skipped=$((skipped + 1))
+        skips+=("${line#SKIP }")
+    done < <(grep '^SKIP ' "$1")
+}
 
 suite() { # name, command...: adds the command's own "N passed, N failed" line
     local name=$1
@@ -23,6 +40,7 @@ suite() { # name, command...: adds the command's own "N passed, N failed" line
     echo "== $name"
     "$@" 2>&1 | tee "$log" | grep -v '^ok ' || true
     local status=${PIPESTATUS[0]}
+    count_skips "$log"
     local line
     line=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$log" | tail -n 1)
     if [ -z "$line" ]; then
@@ -44,6 +62,8 @@ check "C++11 strict"                     sh -c "$CXX -std=c++11 $CXXSTRICT tests
 check "C++17 strict"                     sh -c "$CXX -std=c++17 $CXXSTRICT tests/compile/cpp.cpp -o $out/cpp17 && $out/cpp17"
 if command -v clang++ >/dev/null 2>&1; then
     check "C++11 strict, clang++"        sh -c "clang++ -std=c++11 $CXXSTRICT tests/compile/cpp.cpp -o $out/cpp11clang && $out/cpp11clang"
+else
+    skip "C++11 strict, clang++: clang++ is not installed (apt-get install clang)"
 fi
 check "double include"                   sh -c "$CC -std=c99 $STRICT tests/compile/double_include.c -o $out/double -lm && $out/double"
 check "MESHFIX_STATIC in two units"      sh -c "$CC -std=c99 $STRICT tests/compile/static_a.c tests/compile/static_b.c -o $out/static -lm && $out/static"
@@ -81,7 +101,9 @@ if echo 'int main(void){return 0;}' | $CC -m32 -x c - -o "$out/m32probe" >/dev/n
     done
     m32=1
 else
-    echo "SKIP -m32 suites: no 32-bit toolchain here (bash .ci/run installs gcc-multilib)"
+    for t in $SUITES; do
+        skip "$t built with -m32: no 32-bit toolchain here (apt-get install gcc-multilib)"
+    done
     m32=0
 fi
 
@@ -106,10 +128,14 @@ check "outputs: $CC -O2 with Morton-cluster trees from 16 triangles gives the re
 if command -v clang >/dev/null 2>&1; then
     check "outputs: clang -O2 gives the reference's" same_outputs clang clang -O2
     check "outputs: clang -Ofast gives the reference's" same_outputs clangfast clang -Ofast
+else
+    skip "outputs: clang -O2 and -Ofast: clang is not installed (apt-get install clang)"
 fi
 if [ "$m32" -eq 1 ]; then
     check "outputs: $CC -m32 -O2 (x87) gives the reference's" same_outputs m32 $CC -m32 -O2
     check "outputs: $CC -m32 -O3 -ffast-math gives the reference's" same_outputs m32fast $CC -m32 -O3 -ffast-math
+else
+    skip "outputs: $CC -m32 -O2 and -O3 -ffast-math: no 32-bit toolchain here (apt-get install gcc-multilib)"
 fi
 
 suite "OpenMesh as oracle" build/test_openmesh
@@ -120,9 +146,12 @@ if command -v valgrind >/dev/null 2>&1; then
         MESHFIX_ADVERSARIAL_N=5000 suite "valgrind memcheck: $t" $VG build/$t
     done
 else
-    echo "FAIL valgrind is not installed (bash .ci/run installs it)"
+    echo "FAIL valgrind is not installed (apt-get install valgrind; make test installs it as root)"
     failed=$((failed + 1))
 fi
+echo "== make demo on a bare machine"
+check "make demo with make, cc and c++ only (no tinygltf, nlohmann json, OpenMesh, Embree, libpng, node, python): the demo repairs, a .glb is refused in one line" \
+    bash tests/test_bare_demo.sh
 echo "== command-line tool"
 check "meshfix CLI repairs the demo mesh" sh -c "build/demo_mesh $out/demo.obj >/dev/null && build/meshfix --quiet $out/demo.obj $out/fixed.ply && build/meshfix --inspect $out/fixed.ply | grep -q 'inconsistent 0' && build/meshfix --inspect $out/fixed.ply | grep -q 'inside-out 0'"
 check "meshfix CLI: one-line error, exit 1 on a bad file" sh -c "printf 'OFF\n999999999 1 0\n' > $out/bad.off; build/meshfix $out/bad.off $out/x.obj 2>$out/err.txt; test \$? -eq 1 && test \$(wc -l < $out/err.txt) -eq 1"
@@ -144,8 +173,7 @@ passed=$((passed + $(grep -c '^ok ' "$docs_log")))
 failed=$((failed + $(grep -c '^FAIL ' "$docs_log")))
 
 # The packages around the header: each script prints ok / FAIL / SKIP lines
-# and exits non-zero on a failure (SKIP: a tool is missing; bash .ci/run
-# installs it).
+# and exits non-zero on a failure (SKIP: a tool is missing).
 package_tests() { # title, log name, command...
     local title=$1 log="$out/$2.log" status
     shift 2
@@ -159,15 +187,16 @@ package_tests() { # title, log name, command...
         echo "FAIL $*: exit status $status without a FAIL line"
         failed=$((failed + 1))
     fi
-    skipped=$((skipped + $(grep -c '^SKIP ' "$log")))
+    count_skips "$log"
 }
-skipped=0
 package_tests "CMake and pkg-config: a consumer through add_subdirectory, find_package and pkg-config" cmake \
     bash tests/cmake/run.sh build/cmake
 package_tests "Python module: the binding against the C library on the same meshes" python \
     bash python/test.sh build/python-test
 package_tests "npm package (js/): WebAssembly build, typed-array API, glTF-Transform transform" js bash js/test.sh
-[ "$skipped" -eq 0 ] || echo "$skipped package checks skipped (the SKIP lines above say why; bash .ci/run installs what they need)"
-
-echo "$passed passed, $failed failed"
+if [ "$skipped" -gt 0 ]; then
+    echo "== not run here: $skipped skipped"
+    printf 'SKIP %s\n' "${skips[@]}"
+fi
+echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

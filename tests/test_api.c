@@ -2,8 +2,8 @@
    (split at UV and normal seams), 16-bit indices and double positions,
    a model far from the origin, zero-initialised options, a check that
    says why, the verdict and its one-line summary, welding. Real models
-   from assimp-testmodels and occt-misc (installed by .ci/run). Prints
-   "N passed, N failed". */
+   from assimp-testmodels and occt-misc (make test installs them:
+   tests/install_deps.sh). Prints "N passed, N failed". */
 #undef NDEBUG
 #define MESHFIX_IMPLEMENTATION
 #include "../meshfix.h"

@@ -5,7 +5,8 @@
 # inputs that are not regular files are refused at once, outputs are
 # written all or nothing, NaN corners load. Run from the repository root
 # after `make build/meshfix build/demo_mesh`:  bash tests/test_cli.sh
-# Prints "ok   NAME" or "FAIL NAME" per check, then "N passed, N failed".
+# Prints "ok   NAME" or "FAIL NAME" per check ("SKIP NAME: why" for one that
+# cannot run here), then "N passed, N failed".
 set -u
 cd "$(dirname "$0")/.." || exit 1
 CC=${CC:-cc}
@@ -254,6 +255,8 @@ EOF
 }
 if command -v python3 >/dev/null 2>&1; then
     check "binary STL with NaN corners loads and is inspected" nan_binary
+else
+    echo "SKIP binary STL with NaN corners loads and is inspected: no python3 to write it (apt-get install python3)"
 fi
 
 m32() { # the 32-bit build (without glTF: no 32-bit tinygltf) loads a 40k-triangle STL (it used to hang there)
@@ -268,7 +271,7 @@ m32() { # the 32-bit build (without glTF: no 32-bit tinygltf) loads a 40k-triang
 if echo 'int main(){return 0;}' | $CXX -m32 -x c++ - -o "$tmp/m32probe" >/dev/null 2>&1; then
     check "32-bit build (-m32) loads a 40k-triangle STL within 20 s" m32
 else
-    echo "skip 32-bit build ($CXX -m32 cannot link here)"
+    echo "SKIP 32-bit build (-m32) loads a 40k-triangle STL within 20 s: $CXX -m32 cannot link here (apt-get install g++-multilib)"
 fi
 
 echo "$passed passed, $failed failed"

@@ -16,7 +16,7 @@
 #   - exit statuses, --json, --check, --inspect --mark, --help, --version,
 #     argument errors, several inputs and directories on threads.
 # Run from the repository root after `make build/meshfix`. Needs node;
-# the validator in build/node_modules (bash .ci/run installs it).
+# the validator in build/node_modules (make test installs it: tests/install_deps.sh).
 # Prints "ok   NAME" or "FAIL NAME" per check, then "N passed, N failed".
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -40,7 +40,7 @@ for need in "$M:make build/meshfix" "$ASSIMP/OBJ/spider.obj:apt-get install assi
     fi
 done
 if ! command -v node >/dev/null 2>&1; then
-    echo "FAIL node is not installed (bash .ci/run installs nodejs)"
+    echo "FAIL node is not installed (apt-get install nodejs; make test installs it as root)"
     echo "0 passed, 1 failed"
     exit 1
 fi
@@ -49,7 +49,7 @@ validator=1
 if [ ! -f build/node_modules/gltf-validator/package.json ]; then
     validator=0
     failed=$((failed + 1))
-    echo "FAIL the Khronos glTF-Validator is not installed: npm install --prefix build gltf-validator (bash .ci/run does)"
+    echo "FAIL the Khronos glTF-Validator is not installed: npm install --prefix build gltf-validator (make test does)"
 fi
 
 # json FILE EXPRESSION: evaluates a JavaScript expression over the report `r`

@@ -143,7 +143,8 @@ if [ "$(id -u)" = 0 ] && mkdir -p "$tmp/probe" && mount -t tmpfs -o size=64k tmp
     check "a real full disk (tmpfs, 68 KB free): meshfix in.glb in.glb keeps it, exit 1" tmpfs_full in.glb
     check "a real full disk (tmpfs, 68 KB free): in.gltf + in.bin in place kept" tmpfs_full in.gltf in.bin
 else
-    skip "the tmpfs checks of a full disk (they need root and mount; the LD_PRELOAD ones above ran)"
+    skip "a real full disk (tmpfs, 68 KB free): meshfix in.glb in.glb keeps it, exit 1: needs root and mount (the LD_PRELOAD checks above ran)"
+    skip "a real full disk (tmpfs, 68 KB free): in.gltf + in.bin in place kept: needs root and mount"
 fi
 
 # ---- 3. index bytes shared by two meshes ----

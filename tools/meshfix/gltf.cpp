@@ -35,12 +35,17 @@ std::string directory_of(const std::string &path);
 std::string base_name(const std::string &path);
 
 #ifdef MESHFIX_TOOL_NO_GLTF
+/* The Makefile builds this when tinygltf or nlohmann json is not installed. */
+const bool gltf_supported = false;
+
 std::unique_ptr<MeshFile> load_gltf(const std::string &, std::string &error)
 {
-    error = "this build of meshfix has no glTF support (built without tinygltf)";
+    error = "this meshfix was built without glTF support (install libtinygltf-dev and nlohmann-json3-dev, "
+            "then build it again)";
     return nullptr;
 }
 #else
+const bool gltf_supported = true;
 
 namespace {
 

@@ -120,9 +120,9 @@ int parse(int argc, char **argv, CommandLine &c)
             std::fputs(usage_text, stdout);
             return 0;
         } else if (a == "--version") {
-            std::printf("meshfix %d.%d.%d (meshfix.h %d.%d.%d; glTF through tinygltf)\n", MESHFIX_VERSION_MAJOR,
-                        MESHFIX_VERSION_MINOR, MESHFIX_VERSION_PATCH, MESHFIX_VERSION_MAJOR, MESHFIX_VERSION_MINOR,
-                        MESHFIX_VERSION_PATCH);
+            std::printf("meshfix %d.%d.%d (meshfix.h %d.%d.%d; %s)\n", MESHFIX_VERSION_MAJOR, MESHFIX_VERSION_MINOR,
+                        MESHFIX_VERSION_PATCH, MESHFIX_VERSION_MAJOR, MESHFIX_VERSION_MINOR, MESHFIX_VERSION_PATCH,
+                        gltf_supported ? "glTF through tinygltf" : "built without glTF support");
             return 0;
         } else if (a == "--policy") {
             if (!value(v) || !parse_policy(v, s))

@@ -98,6 +98,9 @@ std::unique_ptr<MeshFile> load_off(const std::string &data, std::string &error);
 std::unique_ptr<MeshFile> load_ply(const std::string &data, std::string &error);
 std::unique_ptr<MeshFile> load_stl(const std::string &data, std::string &error);
 std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error);
+/* false in a build without tinygltf (-DMESHFIX_TOOL_NO_GLTF), whose
+   load_gltf refuses every file with one line */
+extern const bool gltf_supported;
 
 /* The format an extension names ("obj", "off", "stl", "ply", "gltf",
    "glb"), or "" for any other. */
