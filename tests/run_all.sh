@@ -194,6 +194,8 @@ package_tests "CMake and pkg-config: a consumer through add_subdirectory, find_p
 package_tests "Python module: the binding against the C library on the same meshes" python \
     bash python/test.sh build/python-test
 package_tests "npm package (js/): WebAssembly build, typed-array API, glTF-Transform transform" js bash js/test.sh
+package_tests "Blender add-on: the operator in Debian's Blender against the command-line tool" blender \
+    bash blender/test.sh build/blender-test
 if [ "$skipped" -gt 0 ]; then
     echo "== not run here: $skipped skipped"
     printf 'SKIP %s\n' "${skips[@]}"
