@@ -297,6 +297,12 @@ draco() {
 }
 check "glTF with Draco compression: exit 1, one line naming it, nothing written" draco
 
+gltf1() { # tinygltf reads glTF 1.0 as an empty 2.0 document: refused, not "clean"
+    $M --inspect "$ASSIMP/glTF/BoxTextured-glTF/BoxTextured.gltf" >/dev/null 2>"$tmp/g1.err"
+    [ $? -eq 1 ] && [ "$(wc -l <"$tmp/g1.err")" -eq 1 ] && grep -q 'glTF 1.0 is not supported' "$tmp/g1.err"
+}
+check "glTF 1.0 (assimp-testmodels glTF/): exit 1, one line, not reported clean" gltf1
+
 # A correct CAD assembly exported to one file: the Draco engine of
 # assimp-testmodels through Debian's assimp-utils, as OBJ (with vn) and
 # binary STL (facet normals). Its parts touch and some are open: nothing

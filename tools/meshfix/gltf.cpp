@@ -1153,6 +1153,13 @@ std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error)
             return nullptr;
         }
     }
+    /* tinygltf reads a glTF 1.0 file as an empty 2.0 one: say so instead
+       of calling it clean */
+    if (file->model.asset.version.compare(0, 1, "2") != 0) {
+        error = "glTF " + (file->model.asset.version.empty() ? std::string("without a version") : file->model.asset.version) +
+                " is not supported (glTF 2.0 only)";
+        return nullptr;
+    }
     std::string compression = compression_of(file->model);
     if (!compression.empty()) {
         error = compression_message(compression);
