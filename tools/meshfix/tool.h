@@ -131,6 +131,14 @@ private:
 bool write_triangles(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
                      bool colours, std::string &error);
 
+/* What the --mark file shows for a triangle. */
+enum class Mark { kept, flipped, doubtful, none /* in no patch: degenerate, or its unit refused */ };
+Mark mark_of(const Unit &unit, const UnitResult &result, size_t triangle);
+/* Whether triangle t is written turned over (its face flipped). */
+bool written_flipped(const Unit &unit, const UnitResult &result, size_t triangle);
+/* The PLY's colour of a kept triangle's patch (a hash of its number). */
+void patch_tint(unsigned int patch, unsigned char rgb[3]);
+
 /* One input file: what to do with it and, once done, what happened. */
 struct Job {
     std::string input, output, mark; /* output "" with --inspect; mark "" without --mark */
