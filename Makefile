@@ -17,10 +17,20 @@ $(B):
 # libtinygltf-dev (-ltinygltf); the library and the examples' loaders as C99
 TOOL_SOURCES = $(wildcard tools/meshfix/*.cpp)
 TOOL_HEADERS = $(wildcard tools/meshfix/*.h)
+# --mark FILE.png through libpng (Debian's libpng-dev) when pkg-config knows
+# it or its header is installed; `make PNG=` builds without it (MESHFIX_TOOL_NO_PNG)
+PNG_PKG := $(shell pkg-config --exists libpng 2>/dev/null && echo yes)
+PNG_FOUND = $(if $(PNG_PKG)$(wildcard /usr/include/png.h),yes,)
+PNG ?= $(PNG_FOUND)
+TOOL_PNG_FLAGS = $(if $(PNG),$(if $(PNG_PKG),$(shell pkg-config --cflags libpng),),-DMESHFIX_TOOL_NO_PNG)
+TOOL_PNG_LIBS = $(if $(PNG),$(if $(PNG_PKG),$(shell pkg-config --libs libpng),-lpng),)
 
 $(B)/meshfix: $(TOOL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c $(HEADERS) | $(B)
+	@$(if $(PNG),:,echo "meshfix: building without PNG support (--mark FILE.png):" \
+	    $(if $(PNG_FOUND),"PNG= given","no libpng (pkg-config libpng, /usr/include/png.h; Debian: apt-get install libpng-dev)"))
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $(B)/meshfix_libs.o tools/meshfix/libs.c
-	$(CXX) -std=c++17 $(CFLAGS) $(WARN) -o $@ $(TOOL_SOURCES) $(B)/meshfix_libs.o -ltinygltf -pthread
+	$(CXX) -std=c++17 $(CFLAGS) $(WARN) $(TOOL_PNG_FLAGS) -o $@ $(TOOL_SOURCES) $(B)/meshfix_libs.o -ltinygltf \
+	    $(TOOL_PNG_LIBS) -pthread
 
 $(B)/demo_mesh: examples/demo_mesh.c $(HEADERS) | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ examples/demo_mesh.c -lm

@@ -256,9 +256,10 @@ if command -v python3 >/dev/null 2>&1; then
     check "binary STL with NaN corners loads and is inspected" nan_binary
 fi
 
-m32() { # the 32-bit build (without glTF: no 32-bit tinygltf) loads a 40k-triangle STL (it used to hang there)
+m32() { # the 32-bit build (without glTF and PNG: no 32-bit tinygltf or libpng) loads a 40k-triangle STL (it used to hang there)
     $CC -m32 -std=c99 -O2 -c -o "$tmp/libs32.o" tools/meshfix/libs.c &&
-        $CXX -m32 -std=c++17 -O2 -DMESHFIX_TOOL_NO_GLTF -o "$tmp/meshfix32" tools/meshfix/*.cpp "$tmp/libs32.o" -pthread ||
+        $CXX -m32 -std=c++17 -O2 -DMESHFIX_TOOL_NO_GLTF -DMESHFIX_TOOL_NO_PNG -o "$tmp/meshfix32" tools/meshfix/*.cpp \
+            "$tmp/libs32.o" -pthread ||
         return 1
     "$tmp/collide" 40000 "$tmp/crafted40000.stl" || return 1
     timeout 20 "$tmp/meshfix32" --inspect "$tmp/crafted40000.stl" | grep -q 'vertices  120000 used' || return 1

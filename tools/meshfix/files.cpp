@@ -33,6 +33,16 @@ std::string format_of(const std::string &path)
     return "";
 }
 
+std::string mark_format_of(const std::string &path)
+{
+    std::string name = base_name(path);
+    size_t dot = name.rfind('.');
+    std::string ext = dot == std::string::npos ? "" : name.substr(dot + 1);
+    for (char &c : ext)
+        c = (char)std::tolower((unsigned char)c);
+    return ext == "ply" || ext == "png" ? ext : "";
+}
+
 bool is_gltf_format(const std::string &format) { return format == "gltf" || format == "glb"; }
 
 std::string directory_of(const std::string &path)
