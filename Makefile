@@ -90,8 +90,11 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@echo
 	@echo "--- meshfix's default (policy auto): each closed shell faces out:"
 	@$(B)/meshfix $(B)/demo_input.obj $(B)/demo_fixed.obj --mark $(B)/demo_marked.ply
+	@# the README shows docs/demo_marked.png, this picture (tests/test_cli.sh compares them)
+	@$(if $(PNG),$(B)/meshfix --quiet $(B)/demo_input.obj $(B)/demo_fixed.obj --mark $(B)/demo_marked.png,:)
 	@echo
 	@echo "wrote $(B)/demo_fixed.obj and $(B)/demo_marked.ply (flipped faces red; open it in MeshLab or Blender)"
+	@$(if $(PNG),echo "and $(B)/demo_marked.png (the same marks drawn: front, back, top and oblique views)",:)
 
 test: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES:%=$(B)/%_asan) $(SUITES:%=$(B)/%_fast) \
       $(B)/test_openmesh

@@ -351,6 +351,12 @@ def kind(px):
 
 path, test = sys.argv[1], sys.argv[2]
 w, h, rows, text = read_png(path)
+if test == "same":  # png_check.py A same B: the same pixels (whatever zlib made of them)
+    w2, h2, rows2, _ = read_png(sys.argv[3])
+    if (w, h) != (w2, h2):
+        sys.exit("%dx%d, not %dx%d" % (w, h, w2, h2))
+    differ = sum(1 for a, b in zip(rows, rows2) for x in range(0, 3 * w, 3) if a[x:x + 3] != b[x:x + 3])
+    sys.exit("%d pixels differ" % differ if differ else 0)
 pixel = lambda x, y: tuple(rows[y][3 * x:3 * x + 3])
 views = {}
 for line in text.get("meshfix views", "").splitlines():
@@ -481,6 +487,14 @@ png_deterministic() {
         $MESHFIX --quiet "$tmp/demo.obj" "$tmp/png/d2.obj" --mark "$tmp/png/d2.png" && cmp "$tmp/png/d1.png" "$tmp/png/d2.png"
 }
 
+png_docs() { # README's picture is what `make demo` draws now
+    mkdir -p "$tmp/png/demo"
+    cp "$tmp/demo.obj" "$tmp/png/demo/demo_input.obj"
+    $MESHFIX --quiet "$tmp/png/demo/demo_input.obj" "$tmp/png/demo/fixed.obj" --mark "$tmp/png/demo/marked.png" &&
+        python3 "$tmp/png_check.py" "$tmp/png/demo/marked.png" same docs/demo_marked.png ||
+        { echo "(after a change to the picture: make demo && cp build/demo_marked.png docs/)"; return 1; }
+}
+
 png_batch() { # --mark DIR --mark-format png: one picture per input; without it, PLY as before
     mkdir -p "$tmp/png/marks" "$tmp/png/plys"
     $MESHFIX --quiet "$tmp/png/cube.obj" "$tmp/png/cubes.obj" -o "$tmp/png/out" --mark "$tmp/png/marks" --mark-format png &&
@@ -512,6 +526,7 @@ if command -v python3 >/dev/null 2>&1 && png_supported; then
         picture sheet_down sheet_down --policy seed
     check "--mark FILE.png: the same sheet facing up has no back-face pixel" picture sheet_up sheet_up --policy seed
     check "--mark FILE.png: the same input gives the same bytes" png_deterministic
+    check "docs/demo_marked.png, the README's picture, is what make demo draws" png_docs
     check "--mark DIR --mark-format png: a picture per input (PLY without it)" png_batch
     check "--mark FILE.png unwritable, or the output unwritable: nothing written" png_unwritable
 elif ! png_supported; then
