@@ -559,9 +559,23 @@ void draw_view(Canvas &canvas, const View &v, const Model &model)
         int j0 = std::max(0, (int)std::floor(std::min({Y[0], Y[1], Y[2]})));
         int j1 = std::min(sh - 1, (int)std::ceil(std::max({Y[0], Y[1], Y[2]})));
         double inv = 1.0 / area;
-        for (int j = j0; j <= j1; ++j)
-            for (int i = i0; i <= i1; ++i) {
-                double px = i + 0.5, py = j + 0.5;
+        for (int j = j0; j <= j1; ++j) {
+            /* the row's span: where its centre line crosses the edges, a
+               sample wider each side (the test below decides), so that a
+               long sliver costs its length, not its bounding box */
+            double py = j + 0.5, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (int e = 0; e < 3; ++e) {
+                int a = e, b = (e + 1) % 3;
+                if ((Y[a] - py) * (Y[b] - py) > 0.0 || Y[a] == Y[b])
+                    continue;
+                double x = X[a] + (py - Y[a]) * (X[b] - X[a]) / (Y[b] - Y[a]);
+                lo = std::min(lo, x), hi = std::max(hi, x);
+            }
+            if (!(lo <= hi))
+                continue;
+            int from = std::max(i0, (int)std::floor(lo) - 1), to = std::min(i1, (int)std::ceil(hi) + 1);
+            for (int i = from; i <= to; ++i) {
+                double px = i + 0.5;
                 double b0 = ((X[1] - px) * (Y[2] - py) - (X[2] - px) * (Y[1] - py)) * inv;
                 double b1 = ((X[2] - px) * (Y[0] - py) - (X[0] - px) * (Y[2] - py)) * inv;
                 double b2 = 1.0 - b0 - b1;
@@ -570,6 +584,7 @@ void draw_view(Canvas &canvas, const View &v, const Model &model)
                 put(i, j, b0 * Z[0] + b1 * Z[1] + b2 * Z[2],
                     striped && ((i + j) / (8 * samples)) % 2 == 1 ? stripe : main);
             }
+        }
     });
     /* outlines: a covered sample beside an empty one, or in front of one
        much farther away, darkened */
