@@ -42,6 +42,14 @@ GLTF_OFF = glTF support: it refuses .gltf and .glb files (glTF needs tiny_gltf.h
 
 TOOL_SOURCES = $(wildcard tools/meshfix/*.cpp)
 TOOL_HEADERS = $(wildcard tools/meshfix/*.h)
+# --mark FILE.png through libpng (tools/meshfix/render.cpp)
+ifndef PNG
+PNG := $(call have_headers,png.h)
+endif
+TOOL_FLAGS += $(if $(PNG),,-DMESHFIX_TOOL_NO_PNG)
+TOOL_LIBS += $(if $(PNG),-lpng)
+TOOL_OFF += $(if $(PNG),,PNG)
+PNG_OFF = PNG support: --mark FILE.png is refused (it needs png.h; Debian: apt-get install libpng-dev)
 
 $(B)/meshfix: $(TOOL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c $(HEADERS) $(B)/meshfix.options | $(B)
 	@$(foreach o,$(TOOL_OFF),echo '$@ is built without $(subst ',,$($(o)_OFF))';) :
@@ -120,8 +128,11 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@echo
 	@echo "--- meshfix's default (policy auto): each closed shell faces out:"
 	@$(B)/meshfix $(B)/demo_input.obj $(B)/demo_fixed.obj --mark $(B)/demo_marked.ply
+	@# the README shows docs/demo_marked.png, this picture (tests/test_cli.sh compares them)
+	@$(if $(PNG),$(B)/meshfix --quiet $(B)/demo_input.obj $(B)/demo_fixed.obj --mark $(B)/demo_marked.png,:)
 	@echo
 	@echo "wrote $(B)/demo_fixed.obj and $(B)/demo_marked.ply (flipped faces red; open it in MeshLab or Blender)"
+	@$(if $(PNG),echo "and $(B)/demo_marked.png (the same marks drawn: front, back, top and oblique views)",:)
 
 # `make test` installs what the suites need first (tests/install_deps.sh:
 # with apt-get as root; otherwise it names the apt-get line and stops),

@@ -31,6 +31,8 @@ has blender || need+=(blender)
 # glTF-Validator under node
 [ -f /usr/include/tiny_gltf.h ] || need+=(libtinygltf-dev)
 [ -f /usr/include/nlohmann/json.hpp ] || need+=(nlohmann-json3-dev)
+# the tool's --mark FILE.png (the Makefile builds it without when missing)
+[ -f /usr/include/png.h ] || need+=(libpng-dev)
 has node || need+=(nodejs)
 has npm || need+=(npm)
 # the npm package (js/test.sh): meshfix.h compiled to WebAssembly

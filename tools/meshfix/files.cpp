@@ -33,6 +33,16 @@ std::string format_of(const std::string &path)
     return "";
 }
 
+std::string mark_format_of(const std::string &path)
+{
+    std::string name = base_name(path);
+    size_t dot = name.rfind('.');
+    std::string ext = dot == std::string::npos ? "" : name.substr(dot + 1);
+    for (char &c : ext)
+        c = (char)std::tolower((unsigned char)c);
+    return ext == "ply" || ext == "png" ? ext : "";
+}
+
 bool is_gltf_format(const std::string &format) { return format == "gltf" || format == "glb"; }
 
 std::string directory_of(const std::string &path)
@@ -396,6 +406,30 @@ void OutputSet::discard()
 
 /* ---- --mark, and other formats than the input's ---- */
 
+Mark mark_of(const Unit &u, const UnitResult &r, size_t t)
+{
+    if (r.status != MESHFIX_OK)
+        return Mark::none;
+    if (r.patch_ids[t] != 0xFFFFFFFFu && doubtful(r, r.patch_ids[t]))
+        return Mark::doubtful; /* doubtful, flipped or not: look here first */
+    if (r.changes.face_flipped[u.triangle_face[t]])
+        return Mark::flipped;
+    return r.patch_ids[t] == 0xFFFFFFFFu ? Mark::none : Mark::kept;
+}
+
+bool written_flipped(const Unit &u, const UnitResult &r, size_t t)
+{
+    return r.status == MESHFIX_OK && r.changes.face_flipped[u.triangle_face[t]];
+}
+
+void patch_tint(unsigned int patch, unsigned char rgb[3])
+{
+    unsigned int h = patch * 2654435761u;
+    rgb[0] = (unsigned char)(90 + (h >> 8) % 80);
+    rgb[1] = (unsigned char)(120 + (h >> 16) % 100);
+    rgb[2] = (unsigned char)(140 + (h >> 24) % 100);
+}
+
 bool write_triangles(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
                      bool colours, std::string &error)
 {
@@ -409,20 +443,25 @@ bool write_triangles(const std::string &path, const MeshFile &file, const std::v
         for (double p : u.positions)
             positions.push_back((float)p);
         for (size_t t = 0; t < u.indices.size() / 3; ++t) {
-            bool flipped = r.status == MESHFIX_OK && r.changes.face_flipped[u.triangle_face[t]];
-            unsigned int patch = r.status == MESHFIX_OK ? r.patch_ids[t] : 0xFFFFFFFFu;
+            bool flipped = written_flipped(u, r, t);
             indices.insert(indices.end(), {base + u.indices[3 * t], base + u.indices[3 * t + (flipped ? 2 : 1)],
                                            base + u.indices[3 * t + (flipped ? 1 : 2)]});
-            unsigned int h = patch * 2654435761u;
-            if (patch != 0xFFFFFFFFu && doubtful(r, patch))
-                rgb.insert(rgb.end(), {255, 176, 0}); /* doubtful, flipped or not: look here first */
-            else if (flipped)
+            unsigned char tint[3];
+            switch (mark_of(u, r, t)) {
+            case Mark::doubtful:
+                rgb.insert(rgb.end(), {255, 176, 0});
+                break;
+            case Mark::flipped:
                 rgb.insert(rgb.end(), {230, 30, 30});
-            else if (patch == 0xFFFFFFFFu)
+                break;
+            case Mark::none:
                 rgb.insert(rgb.end(), {40, 40, 40});
-            else
-                rgb.insert(rgb.end(), {(unsigned char)(90 + (h >> 8) % 80), (unsigned char)(120 + (h >> 16) % 100),
-                                       (unsigned char)(140 + (h >> 24) % 100)});
+                break;
+            case Mark::kept:
+                patch_tint(r.patch_ids[t], tint);
+                rgb.insert(rgb.end(), {tint[0], tint[1], tint[2]});
+                break;
+            }
         }
     }
     mio_mesh mesh;

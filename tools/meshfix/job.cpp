@@ -10,7 +10,27 @@
 namespace tool {
 namespace {
 
-bool write_outputs(Job &job, Ledger &ledger)
+/* The --mark picture's words and up axis, and the picture. */
+bool write_mark_picture(const std::string &path, const Job &job, const Settings &s, std::string &error)
+{
+    size_t triangles = 0;
+    for (const Unit &u : job.file->units)
+        triangles += u.indices.size() / 3;
+    PictureText text;
+    text.title = base_name(job.input) + ": " + std::to_string(triangles) + (triangles == 1 ? " triangle" : " triangles") +
+                 ", policy " + s.policy_name + (s.check ? ", --check" : s.inspect ? ", --inspect" : "");
+    text.summary = summary_line(job, s);
+    text.inspect = s.inspect;
+    /* --up when given; else glTF's up (+y) for glTF, +z for the rest */
+    float up[3] = {0.0f, 0.0f, 1.0f};
+    if (s.up_given)
+        up[0] = s.up[0], up[1] = s.up[1], up[2] = s.up[2];
+    else if (is_gltf_format(job.file->format()))
+        up[1] = 1.0f, up[2] = 0.0f;
+    return write_picture(path, *job.file, job.results, up, text, error);
+}
+
+bool write_outputs(Job &job, const Settings &settings, Ledger &ledger)
 {
     OutputSet outputs(ledger, job.input);
     std::string error, in = job.file->format(), out = job.output.empty() ? "" : format_of(job.output);
@@ -27,7 +47,8 @@ bool write_outputs(Job &job, Ledger &ledger)
         std::string path = make_parent_directories(job.mark) ? outputs.reserve(job.mark, error) : "";
         if (path.empty() && error.empty())
             error = "cannot make the directory of '" + job.mark + "': " + std::strerror(errno);
-        ok = !path.empty() && write_triangles(path, *job.file, job.results, true, error);
+        ok = !path.empty() && (mark_format_of(job.mark) == "png" ? write_mark_picture(path, job, settings, error)
+                                                                 : write_triangles(path, *job.file, job.results, true, error));
     }
     if (ok)
         ok = outputs.commit(error);
@@ -64,7 +85,7 @@ void run_job_steps(Job &job, const Settings &s, Ledger &ledger)
         if (!s.inspect)
             job.file->apply(i, job.results[i].changes);
     }
-    if (!write_outputs(job, ledger))
+    if (!write_outputs(job, s, ledger))
         return;
     if (s.check && something_wrong(job))
         job.exit = 3;

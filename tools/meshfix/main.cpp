@@ -36,12 +36,16 @@ const char *const usage_text =
     "change; another format than the input's (OBJ, OFF, STL, PLY) gets positions and faces only.\n"
     "\n"
     "  --policy P        auto (default), seed, majority, outward, visibility, up, normals\n"
-    "  --up AXIS         x, y, z, -x, -y or -z: the axis of --policy up (default z)\n"
+    "  --up AXIS         x, y, z, -x, -y or -z: the axis of --policy up (default z) and the\n"
+    "                    picture's up (default z, y for glTF)\n"
     "  --weld TOLERANCE  treat vertices closer than TOLERANCE as one (soups, CAD exports)\n"
     "  --fix-normals     negate flat normals (used by one face) that point away from their face\n"
     "  --ignore-normals  decide by geometry alone: the file's normals are not evidence\n"
     "  --mark FILE.ply   also write the mesh with face colours: flipped red, doubtful amber;\n"
     "                    with several inputs, a directory for one FILE.ply per input\n"
+    "  --mark FILE.png   a picture instead: front, back, top and oblique views, flipped red,\n"
+    "                    doubtful amber, faces seen from behind blue, a legend and the summary\n"
+    "  --mark-format F   ply (default) or png: what --mark DIRECTORY holds for each input\n"
     "  --inspect         report only; with --mark, mark what a repair would flip\n"
     "  --check           --inspect, and exit status 3 when something is wrong (CI)\n"
     "  --json            print the report as JSON on stdout instead of text\n"
@@ -59,6 +63,7 @@ struct CommandLine {
     Settings settings;
     std::vector<std::string> inputs;
     std::string output, output_dir, mark;
+    std::string mark_format; /* "" (from --mark's extension; ply for a directory), "ply" or "png" */
 };
 
 int fail_usage(const std::string &message)
@@ -120,9 +125,10 @@ int parse(int argc, char **argv, CommandLine &c)
             std::fputs(usage_text, stdout);
             return 0;
         } else if (a == "--version") {
-            std::printf("meshfix %d.%d.%d (meshfix.h %d.%d.%d; %s)\n", MESHFIX_VERSION_MAJOR, MESHFIX_VERSION_MINOR,
+            std::printf("meshfix %d.%d.%d (meshfix.h %d.%d.%d; %s; %s)\n", MESHFIX_VERSION_MAJOR, MESHFIX_VERSION_MINOR,
                         MESHFIX_VERSION_PATCH, MESHFIX_VERSION_MAJOR, MESHFIX_VERSION_MINOR, MESHFIX_VERSION_PATCH,
-                        gltf_supported ? "glTF through tinygltf" : "built without glTF support");
+                        gltf_supported ? "glTF through tinygltf" : "built without glTF support",
+                        png_supported() ? "PNG marks through libpng" : "without PNG support");
             return 0;
         } else if (a == "--policy") {
             if (!value(v) || !parse_policy(v, s))
@@ -130,6 +136,7 @@ int parse(int argc, char **argv, CommandLine &c)
         } else if (a == "--up") {
             if (!value(v) || !parse_up(v, s))
                 return fail_usage("--up takes x, y, z, -x, -y or -z, not '" + v + "'");
+            s.up_given = true;
         } else if (a == "--weld") {
             char *end = nullptr;
             if (value(v))
@@ -140,6 +147,9 @@ int parse(int argc, char **argv, CommandLine &c)
         } else if (a == "--mark") {
             if (!value(c.mark))
                 return fail_usage("--mark needs a file name");
+        } else if (a == "--mark-format") {
+            if (!value(c.mark_format) || (c.mark_format != "ply" && c.mark_format != "png"))
+                return fail_usage("--mark-format takes ply or png, not '" + c.mark_format + "'");
         } else if (a == "-o" || a == "--output-dir") {
             if (!value(c.output_dir))
                 return fail_usage(a + " needs a directory");
@@ -234,7 +244,8 @@ bool expand_inputs(const CommandLine &c, std::vector<Job> &jobs)
             if (!c.settings.inspect)
                 job.output = batch ? c.output_dir + "/" + f.second : c.output;
             if (!c.mark.empty())
-                job.mark = batch ? c.mark + "/" + f.second + ".ply" : c.mark;
+                job.mark = batch ? c.mark + "/" + f.second + "." + (c.mark_format.empty() ? "ply" : c.mark_format)
+                                 : c.mark;
             jobs.push_back(std::move(job));
         }
     }
@@ -290,11 +301,20 @@ bool check_outputs(const CommandLine &c)
         if (!is_directory(parent) || access(parent.c_str(), W_OK) != 0)
             return fail_usage("cannot make the output directory '" + c.output_dir + "'"), false;
     }
+    if (!c.mark_format.empty() && c.mark.empty())
+        return fail_usage("--mark-format without --mark"), false;
     if (!c.mark.empty()) {
         if (batch && !is_directory(c.mark))
             return fail_usage("with several inputs, --mark names an existing directory ('" + c.mark + "')"), false;
-        if (!batch && format_of(c.mark) != "ply")
-            return fail_usage("--mark writes PLY (face colours): give a .ply file"), false;
+        std::string mark = batch ? (c.mark_format.empty() ? "ply" : c.mark_format) : mark_format_of(c.mark);
+        if (mark.empty())
+            return fail_usage("--mark writes PLY (face colours) or PNG (a picture): give a .ply or .png file"), false;
+        if (!batch && !c.mark_format.empty() && c.mark_format != mark)
+            return fail_usage("--mark-format " + c.mark_format + " but --mark '" + c.mark + "' is ." + mark), false;
+        if (mark == "png" && !png_supported())
+            return fail_usage(std::string(batch ? "--mark-format png" : "--mark FILE.png") +
+                              ": this meshfix was built without PNG support (no libpng)"),
+                   false;
         if (!batch && !check_target(c.mark, error))
             return fail_usage(error), false;
     }

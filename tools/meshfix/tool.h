@@ -19,6 +19,7 @@ struct Settings {
     std::string policy_name = "auto";
     float up[3] = {0.0f, 0.0f, 1.0f};
     std::string up_name = "z";
+    bool up_given = false; /* --up on the command line (the --mark picture's up axis) */
     float weld_tolerance = -1.0f; /* < 0: topology from bit-identical positions */
     bool fix_normals = false;
     bool ignore_normals = false; /* the file's normals are not passed as evidence */
@@ -69,6 +70,8 @@ bool make_parent_directories(const std::string &file);
    directory, FIFO or read-only file. */
 bool check_target(const std::string &target, std::string &error);
 bool is_directory(const std::string &path);
+/* What a --mark file is by its extension: "ply", "png" or "". */
+std::string mark_format_of(const std::string &path);
 /* "gltf" or "glb" (format_of's names): written from each other */
 bool is_gltf_format(const std::string &format);
 std::string directory_of(const std::string &path);
@@ -131,6 +134,35 @@ private:
    faces red, doubtful patches amber, the rest tinted by patch. */
 bool write_triangles(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
                      bool colours, std::string &error);
+
+/* What the --mark file (PLY or picture) shows for a triangle. */
+enum class Mark { kept, flipped, doubtful, none /* in no patch: degenerate, or its unit refused */ };
+Mark mark_of(const Unit &unit, const UnitResult &result, size_t triangle);
+/* Whether triangle t is written turned over (its face flipped). */
+bool written_flipped(const Unit &unit, const UnitResult &result, size_t triangle);
+/* The PLY's colour of a kept triangle's patch (a hash of its number). */
+void patch_tint(unsigned int patch, unsigned char rgb[3]);
+
+/* ---- the --mark picture (render.cpp) ---- */
+
+/* false when built with MESHFIX_TOOL_NO_PNG (no libpng) */
+bool png_supported();
+
+/* What the picture says beside the views. */
+struct PictureText {
+    std::string title;   /* the first line (the input, its triangles, the policy) */
+    std::string summary; /* the last line, as the report prints it */
+    bool inspect = false; /* --inspect: the legend says "would be flipped" */
+};
+
+/* Draws every unit as repaired (faces as written) in four views, front,
+   back, top and oblique, with `up` up (a unit axis), flat-shaded with a
+   z-buffer: flipped faces red, doubtful patches amber, faces seen from
+   behind blue (striped with red or amber when marked too), the rest grey
+   tinted by patch; a legend and the text. Writes it to `path` as PNG
+   (deterministic: the same input gives the same bytes). */
+bool write_picture(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
+                   const float up[3], const PictureText &text, std::string &error);
 
 /* One input file: what to do with it and, once done, what happened. */
 struct Job {
