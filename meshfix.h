@@ -5539,7 +5539,9 @@ MESHFIX__PRIVATE void meshfix__index_shells(meshfix__geometry *g)
 /* The scene was reversed when its closed parts were: at least two units
    with a volume decided, and at least 90% of their area turned over. Then
    the open parts are most likely reversed too: they turn over unless
-   their own evidence says otherwise. */
+   their own evidence says otherwise. A shell whose normals agree with its
+   winding was authored facing that way (the rooms of a building model,
+   wound and lit from inside): it counts as not turned, so it vetoes. */
 MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g)
 {
     double turned = 0, all = 0;
@@ -5547,13 +5549,14 @@ MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g
     for (u = 0; u < g->unit_count; ++u) {
         const meshfix__unit *x = &g->units[u];
         int majority = x->kept >= x->reversed ? 1 : -1;
+        double normals = x->normals_area > 0 ? x->normals / x->normals_area : 0.0;
         if (x->kind != MESHFIX_EVIDENCE_VOLUME || !meshfix__significant(x, g->sigma))
             continue;
         /* what the geometry says (a cavity in, the rest out), against the
            side most of it faces as given */
         count++;
         all += x->area;
-        turned += x->mean * majority < 0 ? x->area : 0.0;
+        turned += x->mean * majority < 0 && normals * majority <= 0.5 ? x->area : 0.0;
     }
     return count >= 2 && turned >= 0.9 * all;
 }

@@ -54,6 +54,22 @@ static size_t count_changed(const mio_mesh *g, const unsigned int *out)
     return changed;
 }
 
+/* The face normal of each triangle as it stands (free it): what an
+   exporter writes for a mesh wound as authored. */
+static float *face_normals(const mio_mesh *g)
+{
+    size_t t, n = g->index_count / 3;
+    float *normals = (float *)malloc(3 * n * sizeof(float) + 4);
+    for (t = 0; t < n; ++t) {
+        const float *a = g->positions + 3 * g->indices[3 * t], *b = g->positions + 3 * g->indices[3 * t + 1];
+        const float *c = g->positions + 3 * g->indices[3 * t + 2];
+        normals[3 * t] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+        normals[3 * t + 1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+        normals[3 * t + 2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    }
+    return normals;
+}
+
 /* ---- the reproductions: open sheets a user tries first ---- */
 
 static void test_quad_and_terrain(void)
@@ -291,20 +307,13 @@ static void test_authored_normals(void)
     meshfix_report r;
     float *normals;
     unsigned int *out, *inward;
-    size_t t, n;
+    size_t n;
     CHECK(gen_sphere(&g, 12, 18, 0, 0, 0, 1));
     n = g.index_count / 3;
     gen_reverse_all(&g, NULL);
     inward = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
     memcpy(inward, g.indices, g.index_count * sizeof(unsigned int));
-    normals = (float *)malloc(3 * n * sizeof(float));
-    for (t = 0; t < n; ++t) { /* the inward normal of each triangle as it stands */
-        const float *a = g.positions + 3 * g.indices[3 * t], *b = g.positions + 3 * g.indices[3 * t + 1];
-        const float *c = g.positions + 3 * g.indices[3 * t + 2];
-        normals[3 * t] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
-        normals[3 * t + 1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
-        normals[3 * t + 2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    }
+    normals = face_normals(&g); /* inward, as it stands */
     memset(&o, 0, sizeof(o));
     out = repair(&g, NULL, &r);
     CHECK_EQ(r.triangles_flipped, n); /* geometry alone: outward */
@@ -344,6 +353,56 @@ static void test_authored_normals(void)
     free(inward);
     free(normals);
     mio_free(&g);
+}
+
+/* Three rooms wound and lit from inside, beside a floor sheet facing up:
+   every closed part disagrees with the geometry, which alone would call
+   the scene reversed and turn the floor down too. The normals agree with
+   the winding, so nothing is reversed: unchanged. With a third of the
+   triangles reversed, restored to the normals. */
+static void test_rooms_with_normals(void)
+{
+    mio_mesh rooms, part;
+    meshfix_options o;
+    meshfix_report r;
+    float *normals;
+    unsigned int *out, *authored;
+    int k;
+    memset(&rooms, 0, sizeof(rooms));
+    for (k = 0; k < 3; ++k) {
+        float lo[3], hi[3] = {0, 1, 1};
+        lo[0] = 2.0f * (float)k, lo[1] = lo[2] = 0;
+        hi[0] = lo[0] + 1;
+        CHECK(gen_box(&part, 4, lo, hi));
+        gen_reverse_all(&part, NULL);
+        CHECK(gen_append(&rooms, &part));
+        mio_free(&part);
+    }
+    {
+        float rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, offset[3] = {-0.5f, -0.5f, -0.3f};
+        CHECK(gen_terrain(&part, 10, 6, 0.02f, 0));
+        gen_transform(&part, rotation, offset);
+        CHECK(gen_append(&rooms, &part));
+        mio_free(&part);
+    }
+    normals = face_normals(&rooms);
+    authored = (unsigned int *)malloc(rooms.index_count * sizeof(unsigned int));
+    memcpy(authored, rooms.indices, rooms.index_count * sizeof(unsigned int));
+    memset(&o, 0, sizeof(o));
+    o.evidence.triangle_normals = normals;
+    out = repair(&rooms, &o, &r);
+    CHECK_EQ(r.triangles_flipped, 0);
+    CHECK_EQ(r.evidence.shells_inward, 3);
+    check_counts(&r);
+    free(out);
+    gen_reverse_random(&rooms, NULL, 0.33, 5);
+    out = repair(&rooms, &o, &r);
+    CHECK(r.triangles_flipped > 0);
+    CHECK(memcmp(out, authored, rooms.index_count * sizeof(unsigned int)) == 0);
+    free(out);
+    free(authored);
+    free(normals);
+    mio_free(&rooms);
 }
 
 /* ---- confidence ---- */
@@ -464,6 +523,7 @@ static const test_case tests[] = {
      test_cut_families},
     {"same verdicts for any triangle order and any amount reversed", test_order_and_amount},
     {"authored normals: an inward drum kept, half reversed restored to them", test_authored_normals},
+    {"rooms facing in with their normals beside a floor: unchanged; a third reversed: restored", test_rooms_with_normals},
     {"min_confidence leaves doubtful patches as their majority faces", test_min_confidence},
 };
 
