@@ -5025,7 +5025,13 @@ MESHFIX__PRIVATE void meshfix__sum_units(meshfix__geometry *g)
    members against the others, every member is asked on its own whether
    its front, as given, faces out of the unit's surface or into it: the
    parity of its rays' crossings of that surface, both ways, which does not
-   depend on how anything is wound. The joins are then made again,
+   depend on how anything is wound. Only the members near a turn are
+   asked: those with a pair to a member of their unit turned the other
+   way, across which a wrong join can have turned a part, and their
+   neighbours, which the joins made again may route through (elsewhere the
+   members agree, and their sides only cost rays: on a head cut into 500
+   patches with a few folded fins, a third of the whole call went to
+   asking every member). The joins are then made again,
    strongest first, and a join that would put two members whose sides are
    known on opposite sides of their unit is refused. Clear normals of the
    caller's on a patch anchor it from the start (meshfix__anchor_normals). */
@@ -5082,9 +5088,8 @@ MESHFIX__PRIVATE signed char meshfix__member_side(const meshfix__geometry *g, un
 
 typedef struct meshfix__member_task {
     const meshfix__geometry *g;
-    const unsigned char *mixed; /* per unit: some members turned against others */
-    signed char *sides;         /* per patch */
-    unsigned int *samples;      /* per patch */
+    signed char *sides;    /* per patch: comes in non-zero where the side is asked */
+    unsigned int *samples; /* per patch */
 } meshfix__member_task;
 
 MESHFIX__PRIVATE void meshfix__member_chunk(void *context, size_t chunk)
@@ -5093,33 +5098,54 @@ MESHFIX__PRIVATE void meshfix__member_chunk(void *context, size_t chunk)
     const meshfix__geometry *g = task->g;
     size_t p, end = (chunk + 1) * MESHFIX__UNITS_PER_TASK;
     for (p = chunk * MESHFIX__UNITS_PER_TASK; p < end && p < g->m->patch_count; ++p) {
+        int asked = task->sides[p] != 0;
         task->sides[p] = 0;
         task->samples[p] = 0;
-        if (task->mixed[g->patch_unit[p]] && g->patch_first[p] < g->patch_end[p] &&
-            g->bvh.unit_root[g->patch_unit[p]] != MESHFIX__NONE)
+        if (asked && g->patch_first[p] < g->patch_end[p] && g->bvh.unit_root[g->patch_unit[p]] != MESHFIX__NONE)
             task->sides[p] = meshfix__member_side(g, (unsigned int)p, &task->samples[p]);
     }
 }
 
-/* The sides of the members of every unit that turned some of them
-   against others (sides[p] 0 elsewhere); returns 0 when there is none,
-   and adds the rays cast to *rays. `mixed` is scratch of a byte per unit. */
-MESHFIX__PRIVATE int meshfix__measure_members(const meshfix__geometry *g, unsigned char *mixed, signed char *sides,
-                                              unsigned int *samples, size_t *rays)
+/* Marks in sides the members near a turn: both ends of every pair
+   within a unit whose members are turned against each other (1), then
+   their partners in the unit (2). Returns 0 when there is none. */
+MESHFIX__PRIVATE int meshfix__mark_frontier(const meshfix__geometry *g, const meshfix__coherence *coherence,
+                                           signed char *sides)
+{
+    size_t i;
+    int any = 0;
+    MESHFIX_MEMSET(sides, 0, g->m->patch_count);
+    for (i = 0; i < coherence->pair_count; ++i) {
+        unsigned int a = coherence->pairs[i].a, b = coherence->pairs[i].b;
+        if (g->patch_unit[a] != g->patch_unit[b] || g->patch_turn[a] == g->patch_turn[b])
+            continue;
+        sides[a] = sides[b] = 1;
+        any = 1;
+    }
+    for (i = 0; i < coherence->pair_count; ++i) {
+        unsigned int a = coherence->pairs[i].a, b = coherence->pairs[i].b;
+        if (g->patch_unit[a] != g->patch_unit[b])
+            continue;
+        if (sides[a] == 1 && sides[b] == 0)
+            sides[b] = 2;
+        if (sides[b] == 1 && sides[a] == 0)
+            sides[a] = 2;
+    }
+    return any;
+}
+
+/* The sides of the members near a turn (sides[p] 0 elsewhere);
+   returns 0 when there is none, and adds the rays cast to *rays. */
+MESHFIX__PRIVATE int meshfix__measure_members(const meshfix__geometry *g, const meshfix__coherence *coherence,
+                                              signed char *sides, unsigned int *samples, size_t *rays)
 {
     const meshfix__mesh *m = g->m;
     meshfix__member_task task;
-    unsigned int p, any = 0;
+    unsigned int p;
     size_t chunks = (m->patch_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK, c;
-    MESHFIX_MEMSET(mixed, 0, g->unit_count);
-    for (p = 0; p < m->patch_count; ++p) {
-        mixed[g->patch_unit[p]] |= g->patch_turn[p];
-        any |= g->patch_turn[p];
-    }
-    if (!any)
+    if (!meshfix__mark_frontier(g, coherence, sides))
         return 0;
     task.g = g;
-    task.mixed = mixed;
     task.sides = sides;
     task.samples = samples;
     if (g->o->parallel_for != NULL)
@@ -5814,7 +5840,6 @@ MESHFIX__PRIVATE int meshfix__form_units(meshfix__geometry *g, const meshfix__co
     signed char *sides = (signed char *)meshfix__take(&g->arena, patches, 1);
     unsigned int *samples = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
     unsigned int *first_unit = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
-    unsigned char *mixed;
     unsigned int p, same_units = 1;
     if (!sides || !samples || !first_unit)
         return 0;
@@ -5825,8 +5850,7 @@ MESHFIX__PRIVATE int meshfix__form_units(meshfix__geometry *g, const meshfix__co
     if (!meshfix__prepare_units(g))
         return 0;
     meshfix__build_unit_trees(g);
-    mixed = (unsigned char *)g->unit_slots; /* scratch: the trees over units come later */
-    if (meshfix__measure_members(g, mixed, sides, samples, &r->evidence.rays_cast)) {
+    if (meshfix__measure_members(g, coherence, sides, samples, &r->evidence.rays_cast)) {
         MESHFIX_MEMCPY(first_unit, g->patch_unit, patches * sizeof(unsigned int));
         meshfix__reset_merge(merge, (unsigned int)patches);
         meshfix__anchor_normals(g, merge);
