@@ -767,35 +767,47 @@ MESHFIX__PRIVATE void meshfix__release(const meshfix_memory_options *a, void *p)
         MESHFIX_FREE(p, a->user_data);
 }
 
-/* A bump allocator over one block: the geometric stage takes every array
-   it needs from it and gives nothing back; the whole block goes at the
-   end. The block is the rest of the caller's scratch, or one allocation
-   of the size meshfix__geometry_bytes computes for the same arrays. */
-#define MESHFIX__ARENA_SLACK 64
+/* The geometric stage's memory in one place: every array it uses, its
+   element count from the mesh's counts (or the worst mesh's, for
+   meshfix_scratch_size) and its offset in one block, laid out by
+   meshfix__plan_geometry (>>geometry). Stages reach their arrays only
+   through the plan (meshfix__array), so the block asked for is the block
+   used: an array the plan forgot does not compile, and one asked longer
+   than planned fails the assertion (and reads as out of memory). */
+typedef struct meshfix__span {
+    size_t offset, count;
+} meshfix__span;
+
+typedef struct meshfix__geometry_plan {
+    /* the decisions: per patch, per triangle */
+    meshfix__span confidence, patch_kind, patch_unit, patch_turn, triangle_unit;
+    /* coherence: segments, pairs and their sort, a ring's radial order, the grid */
+    meshfix__span segments, pairs, pair_scratch, ring_work, ring_members, ring_angles, grid_start, grid_items;
+    /* the merge; VISIBILITY's escapes and areas, the others' anchors */
+    meshfix__span parent, parity, turn, front, back, merged_area, side, normals;
+    /* the members' sides (not VISIBILITY) */
+    meshfix__span member_sides, member_samples, first_unit;
+    /* units, the tree over shells, the nets of rings, VISIBILITY's samples */
+    meshfix__span units, unit_slots, unit_ids, shell_nodes, shell_ids, patch_first, patch_end, nets, samples;
+    /* the trees over the slots */
+    meshfix__span unit_first, unit_root, order, corners, by_index, cumulative_area, morton_sort, nodes;
+    size_t total; /* bytes, with the slack that aligns the block's start */
+} meshfix__geometry_plan;
+
 typedef struct meshfix__arena {
-    unsigned char *base;
-    size_t used, size;
+    unsigned char *base; /* aligned to MESHFIX__ARENA_ALIGN */
+    meshfix__geometry_plan plan;
 } meshfix__arena;
 
-/* Tree nodes start on a cache line: meshfix__geometry_bytes adds what
-   that can cost. */
+/* Tree nodes start on a cache line; every other array on 16 bytes. */
+#define MESHFIX__ARENA_ALIGN 64
 #define MESHFIX__NODE_ALIGN 64
 
-MESHFIX__PRIVATE void *meshfix__take_aligned(meshfix__arena *a, size_t count, size_t size, size_t align)
+/* An array of the plan, `count` elements of it. */
+MESHFIX__PRIVATE void *meshfix__array(const meshfix__arena *a, meshfix__span span, size_t count)
 {
-    size_t offset, used = a->used;
-    int fits = meshfix__add_aligned(&used, count, size, align, &offset) && used <= a->size;
-    /* meshfix__geometry_bytes counts what the stage takes: never short */
-    MESHFIX_ASSERT(fits);
-    if (!fits)
-        return NULL;
-    a->used = used;
-    return a->base + offset;
-}
-
-MESHFIX__PRIVATE void *meshfix__take(meshfix__arena *a, size_t count, size_t size)
-{
-    return meshfix__take_aligned(a, count, size, 16);
+    MESHFIX_ASSERT(count <= span.count);
+    return count <= span.count ? a->base + span.offset : NULL;
 }
 
 /* ===== >>validate ===== */
@@ -2954,15 +2966,15 @@ MESHFIX__PRIVATE unsigned int meshfix__morton_tree(meshfix__bvh *b, const meshfi
    counting sort: each unit's slots in triangle order), and the frame.
    Trees come later, per unit, as rays need them. Returns 0 when out of
    memory. */
-MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *m, meshfix__arena *a,
+MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *m, const meshfix__arena *a,
                                          const unsigned int *triangle_unit, unsigned int unit_count)
 {
     unsigned int t, u, n = 0, sum = 0;
     /* the frame was fitted before (coherence works in it too) */
     b->unit_count = unit_count;
     b->top = MESHFIX__NONE;
-    b->unit_first = (unsigned int *)meshfix__take(a, (size_t)unit_count + 1, sizeof(unsigned int));
-    b->unit_root = (unsigned int *)meshfix__take(a, unit_count, sizeof(unsigned int));
+    b->unit_first = (unsigned int *)meshfix__array(a, a->plan.unit_first, (size_t)unit_count + 1);
+    b->unit_root = (unsigned int *)meshfix__array(a, a->plan.unit_root, unit_count);
     if (b->unit_first == NULL || b->unit_root == NULL)
         return 0;
     MESHFIX_MEMSET(b->unit_first, 0, ((size_t)unit_count + 1) * sizeof(unsigned int));
@@ -2979,13 +2991,12 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
             b->unit_root[u] = MESHFIX__NONE;
     }
     b->count = n;
-    b->order = (unsigned int *)meshfix__take(a, n, sizeof(unsigned int));
-    b->corners = (float *)meshfix__take(a, 9 * ((size_t)n + MESHFIX__SLOT_PAD), sizeof(float));
-    b->by_index = (unsigned int *)meshfix__take(a, n, sizeof(unsigned int));
-    b->cumulative_area = (double *)meshfix__take(a, n, sizeof(double));
-    b->sort = (unsigned int *)meshfix__take(a, 4 * (size_t)n, sizeof(unsigned int));
-    b->nodes = (meshfix__node *)meshfix__take_aligned(a, (size_t)n + unit_count + 1, sizeof(meshfix__node),
-                                                      MESHFIX__NODE_ALIGN);
+    b->order = (unsigned int *)meshfix__array(a, a->plan.order, n);
+    b->corners = (float *)meshfix__array(a, a->plan.corners, 9 * ((size_t)n + MESHFIX__SLOT_PAD));
+    b->by_index = (unsigned int *)meshfix__array(a, a->plan.by_index, n);
+    b->cumulative_area = (double *)meshfix__array(a, a->plan.cumulative_area, n);
+    b->sort = (unsigned int *)meshfix__array(a, a->plan.morton_sort, 4 * (size_t)n);
+    b->nodes = (meshfix__node *)meshfix__array(a, a->plan.nodes, (size_t)n + unit_count + 1);
     if (b->order == NULL || b->by_index == NULL || b->corners == NULL || b->cumulative_area == NULL ||
         b->sort == NULL || b->nodes == NULL)
         return 0;
@@ -4168,7 +4179,7 @@ MESHFIX__PRIVATE unsigned int meshfix__collect_segments(const meshfix__geometry 
 
 /* Stage 2: a hash grid of cells at least the search distance and the
    mean edge wide; each segment is entered at most three times (what
-   meshfix__geometry_bytes counts). Returns 0 when out of memory. */
+   meshfix__plan_geometry lays out). Returns 0 when out of memory. */
 MESHFIX__PRIVATE size_t meshfix__grid_buckets(size_t segments)
 {
     size_t buckets = 16;
@@ -4189,14 +4200,14 @@ MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix
     grid->cell = meshfix__maxd(reach, average);
     buckets = meshfix__grid_buckets(n);
     grid->mask = buckets - 1;
-    grid->start = (unsigned int *)meshfix__take(&g->arena, buckets + 1, sizeof(unsigned int));
+    grid->start = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.grid_start, buckets + 1);
     if (grid->start == NULL)
         return 0;
     MESHFIX_MEMSET(grid->start, 0, (buckets + 1) * sizeof(unsigned int));
     meshfix__grid_pass(grid, segments, n, 0);
     for (k = 0; k < buckets; ++k)
         grid->start[k + 1] += grid->start[k];
-    grid->items = (meshfix__cell_item *)meshfix__take(&g->arena, grid->start[buckets], sizeof(meshfix__cell_item));
+    grid->items = (meshfix__cell_item *)meshfix__array(&g->arena, g->arena.plan.grid_items, grid->start[buckets]);
     if (grid->items == NULL)
         return 0;
     meshfix__grid_pass(grid, segments, n, 1); /* start[b] now ends bucket b */
@@ -4580,12 +4591,12 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
         rings += (unsigned int)meshfix__is_ring(m->mate[h]);
     }
     largest = meshfix__largest_ring(m);
-    out->segments = (meshfix__segment *)meshfix__take(&g->arena, boundary, sizeof(meshfix__segment));
-    out->pairs = (meshfix__pair *)meshfix__take(&g->arena, (size_t)boundary + rings, sizeof(meshfix__pair));
-    tmp = (meshfix__pair *)meshfix__take(&g->arena, (size_t)boundary + rings, sizeof(meshfix__pair));
-    work = (unsigned int *)meshfix__take(&g->arena, largest, sizeof(unsigned int));
-    members = (unsigned int *)meshfix__take(&g->arena, largest, sizeof(unsigned int));
-    angle = (double *)meshfix__take(&g->arena, largest, sizeof(double));
+    out->segments = (meshfix__segment *)meshfix__array(&g->arena, g->arena.plan.segments, boundary);
+    out->pairs = (meshfix__pair *)meshfix__array(&g->arena, g->arena.plan.pairs, (size_t)boundary + rings);
+    tmp = (meshfix__pair *)meshfix__array(&g->arena, g->arena.plan.pair_scratch, (size_t)boundary + rings);
+    work = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.ring_work, largest);
+    members = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.ring_members, largest);
+    angle = (double *)meshfix__array(&g->arena, g->arena.plan.ring_angles, largest);
     if (!out->segments || !out->pairs || !tmp || !work || !members || !angle)
         goto done;
     out->segment_count = meshfix__collect_segments(g, scale, out->segments);
@@ -4845,23 +4856,24 @@ MESHFIX__PRIVATE void meshfix__reset_merge(meshfix__merge *merge, unsigned int p
     }
 }
 
-MESHFIX__PRIVATE int meshfix__alloc_merge(meshfix__geometry *g, meshfix__merge *merge, int with_visibility)
+MESHFIX__PRIVATE int meshfix__alloc_merge(const meshfix__geometry *g, meshfix__merge *merge, int with_visibility)
 {
+    const meshfix__arena *a = &g->arena;
     size_t patches = g->m->patch_count;
     MESHFIX_MEMSET(merge, 0, sizeof(*merge));
-    merge->parent = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
-    merge->parity = (unsigned char *)meshfix__take(&g->arena, patches, 1);
-    merge->turn = (unsigned char *)meshfix__take(&g->arena, patches, 1);
+    merge->parent = (unsigned int *)meshfix__array(a, a->plan.parent, patches);
+    merge->parity = (unsigned char *)meshfix__array(a, a->plan.parity, patches);
+    merge->turn = (unsigned char *)meshfix__array(a, a->plan.turn, patches);
     if (!with_visibility) {
-        merge->side = (signed char *)meshfix__take(&g->arena, patches, 1);
-        merge->normals = (signed char *)meshfix__take(&g->arena, patches, 1);
+        merge->side = (signed char *)meshfix__array(a, a->plan.side, patches);
+        merge->normals = (signed char *)meshfix__array(a, a->plan.normals, patches);
         if (!merge->side || !merge->normals)
             return 0;
     }
     if (with_visibility) {
-        merge->front = (double *)meshfix__take(&g->arena, patches, sizeof(double));
-        merge->back = (double *)meshfix__take(&g->arena, patches, sizeof(double));
-        merge->area = (double *)meshfix__take(&g->arena, patches, sizeof(double));
+        merge->front = (double *)meshfix__array(a, a->plan.front, patches);
+        merge->back = (double *)meshfix__array(a, a->plan.back, patches);
+        merge->area = (double *)meshfix__array(a, a->plan.merged_area, patches);
         if (!merge->front || !merge->back || !merge->area)
             return 0;
     }
@@ -5797,19 +5809,20 @@ MESHFIX__PRIVATE void meshfix__slots_by_patch(meshfix__geometry *g)
 MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
 {
     meshfix__mesh *m = g->m;
+    const meshfix__arena *a = &g->arena;
     unsigned int t;
     size_t units = g->unit_count;
     for (t = 0; t < m->triangle_count; ++t)
         g->triangle_unit[t] = meshfix__has_area(m, t) ? g->patch_unit[m->tri_patch[t]] : MESHFIX__NONE;
-    g->units = (meshfix__unit *)meshfix__take(&g->arena, units, sizeof(meshfix__unit));
-    g->unit_slots = (float *)meshfix__take(&g->arena, 9 * units, sizeof(float));
-    g->unit_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
-    g->shell_nodes = (meshfix__node *)meshfix__take_aligned(&g->arena, units, sizeof(meshfix__node), MESHFIX__NODE_ALIGN);
-    g->shell_ids = (unsigned int *)meshfix__take(&g->arena, units, sizeof(unsigned int));
+    g->units = (meshfix__unit *)meshfix__array(a, a->plan.units, units);
+    g->unit_slots = (float *)meshfix__array(a, a->plan.unit_slots, 9 * units);
+    g->unit_ids = (unsigned int *)meshfix__array(a, a->plan.unit_ids, units);
+    g->shell_nodes = (meshfix__node *)meshfix__array(a, a->plan.shell_nodes, units);
+    g->shell_ids = (unsigned int *)meshfix__array(a, a->plan.shell_ids, units);
     if (!g->units || !g->unit_slots || !g->unit_ids || !g->shell_nodes || !g->shell_ids)
         return 0;
-    g->patch_first = (unsigned int *)meshfix__take(&g->arena, m->patch_count, sizeof(unsigned int));
-    g->patch_end = (unsigned int *)meshfix__take(&g->arena, m->patch_count, sizeof(unsigned int));
+    g->patch_first = (unsigned int *)meshfix__array(a, a->plan.patch_first, m->patch_count);
+    g->patch_end = (unsigned int *)meshfix__array(a, a->plan.patch_end, m->patch_count);
     if (!g->patch_first || !g->patch_end || !meshfix__prepare_bvh(&g->bvh, m, &g->arena, g->triangle_unit, g->unit_count))
         return 0;
     meshfix__slots_by_patch(g);
@@ -5836,17 +5849,16 @@ MESHFIX__PRIVATE int meshfix__form_units(meshfix__geometry *g, const meshfix__co
                                         meshfix__merge *merge, meshfix_report *r)
 {
     const meshfix__mesh *m = g->m;
-    size_t patches = m->patch_count, mark, joins;
-    signed char *sides = (signed char *)meshfix__take(&g->arena, patches, 1);
-    unsigned int *samples = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
-    unsigned int *first_unit = (unsigned int *)meshfix__take(&g->arena, patches, sizeof(unsigned int));
+    size_t patches = m->patch_count, joins;
+    signed char *sides = (signed char *)meshfix__array(&g->arena, g->arena.plan.member_sides, patches);
+    unsigned int *samples = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.member_samples, patches);
+    unsigned int *first_unit = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.first_unit, patches);
     unsigned int p, same_units = 1;
     if (!sides || !samples || !first_unit)
         return 0;
     meshfix__anchor_normals(g, merge);
     joins = meshfix__merge_by_coherence(merge, coherence->pairs, coherence->pair_count);
     meshfix__number_units(g, merge);
-    mark = g->arena.used;
     if (!meshfix__prepare_units(g))
         return 0;
     meshfix__build_unit_trees(g);
@@ -5862,7 +5874,6 @@ MESHFIX__PRIVATE int meshfix__form_units(meshfix__geometry *g, const meshfix__co
         /* a refused join split a unit: its slots and trees are made again
            (they do not depend on turns: the sums, which do, come after) */
         if (!same_units) {
-            g->arena.used = mark;
             if (!meshfix__prepare_units(g))
                 return 0;
             meshfix__build_unit_trees(g);
@@ -5888,7 +5899,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     if (!meshfix__measure_coherence(g, &coherence) || !meshfix__alloc_merge(g, &merge, 0) ||
         !meshfix__form_units(g, &coherence, &merge, r))
         goto done;
-    net = (int *)meshfix__take(&g->arena, g->unit_count, sizeof(int));
+    net = (int *)meshfix__array(&g->arena, g->arena.plan.nets, g->unit_count);
     if (net == NULL)
         goto done;
     MESHFIX_MEMSET(net, 0, g->unit_count * sizeof(int));
@@ -6043,7 +6054,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
     meshfix__number_units(g, NULL);
     if (!meshfix__prepare_units(g) || !meshfix__alloc_merge(g, &merge, 1))
         goto done;
-    samples = (unsigned int *)meshfix__take(&g->arena, m->patch_count, sizeof(unsigned int));
+    samples = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.samples, m->patch_count);
     if (samples == NULL)
         goto done;
     MESHFIX_MEMSET(samples, 0, m->patch_count * sizeof(unsigned int));
@@ -6122,57 +6133,72 @@ MESHFIX__PRIVATE void meshfix__count_geometry(const meshfix__mesh *m, meshfix__g
     c->largest_ring = meshfix__largest_ring(m);
 }
 
-/* The bytes of every array the geometric stage takes from its arena, in
-   the order it takes them (aligned as meshfix__add_size aligns them), and
-   the slack that aligns the arena's start; 0 when that overflows. */
-MESHFIX__PRIVATE size_t meshfix__geometry_bytes(const meshfix__geometry_counts *c, int policy)
+/* Lays out every array of the geometric stage (meshfix__geometry_plan)
+   for meshes with these counts; 0 when the sizes overflow. VISIBILITY
+   has escapes and areas where the others have anchors and members. */
+MESHFIX__PRIVATE int meshfix__place(size_t *total, meshfix__span *span, size_t count, size_t size)
 {
-    size_t total = 0, at, n = c->triangles, p = c->patches, b = c->boundary, pairs = c->boundary + c->rings;
-    size_t l = c->largest_ring, vis = policy == MESHFIX_POLICY_VISIBILITY ? p : 0;
-    int ok = /* verdicts, units of patches and triangles */
-        meshfix__add_size(&total, p, sizeof(float), &at) && meshfix__add_size(&total, p, 1, &at) &&
-        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, 1, &at) &&
-        meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
-        /* coherence: segments, pairs and their sort, a ring's radial order, the grid (three
-           entries a segment at most) */
-        meshfix__add_size(&total, b, sizeof(meshfix__segment), &at) &&
-        meshfix__add_size(&total, pairs, sizeof(meshfix__pair), &at) &&
-        meshfix__add_size(&total, pairs, sizeof(meshfix__pair), &at) &&
-        meshfix__add_size(&total, l, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, l, sizeof(unsigned int), &at) && meshfix__add_size(&total, l, sizeof(double), &at) &&
-        meshfix__add_size(&total, meshfix__grid_buckets(b) + 1, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, b, 3 * sizeof(meshfix__cell_item), &at) &&
-        /* the merge, its anchors; the members' sides, samples and first units */
-        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, 1, &at) &&
-        meshfix__add_size(&total, p, 1, &at) && meshfix__add_size(&total, vis, 3 * sizeof(double), &at) &&
-        meshfix__add_size(&total, p - vis, 1, &at) && meshfix__add_size(&total, p - vis, 1, &at) &&
-        meshfix__add_size(&total, p - vis, 1, &at) && meshfix__add_size(&total, p - vis, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, p - vis, sizeof(unsigned int), &at) &&
-        /* units, the tree over shells, the nets of rings */
-        meshfix__add_size(&total, p, sizeof(meshfix__unit), &at) &&
-        meshfix__add_size(&total, p, 9 * sizeof(float), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, MESHFIX__NODE_ALIGN - 16, 1, &at) &&
-        meshfix__add_size(&total, p, sizeof(meshfix__node), &at) &&
-        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(int), &at) &&
-        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, p, sizeof(unsigned int), &at) &&
-        /* the trees and VISIBILITY's samples */
-        meshfix__add_size(&total, p + 1, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, p, sizeof(unsigned int), &at) && meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, n + MESHFIX__SLOT_PAD, 9 * sizeof(float), &at) &&
-        meshfix__add_size(&total, n, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, n, sizeof(double), &at) &&
-        meshfix__add_size(&total, n, 4 * sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, MESHFIX__NODE_ALIGN - 16, 1, &at) &&
-        meshfix__add_size(&total, n + p + 1, sizeof(meshfix__node), &at) &&
-        meshfix__add_size(&total, vis, sizeof(unsigned int), &at) &&
-        meshfix__add_size(&total, MESHFIX__ARENA_SLACK, 1, &at);
-    return ok ? total : 0;
+    span->count = count;
+    return meshfix__add_size(total, count, size, &span->offset);
+}
+
+MESHFIX__PRIVATE int meshfix__place_nodes(size_t *total, meshfix__span *span, size_t count)
+{
+    span->count = count;
+    return meshfix__add_aligned(total, count, sizeof(meshfix__node), MESHFIX__NODE_ALIGN, &span->offset);
+}
+
+MESHFIX__PRIVATE int meshfix__plan_geometry(const meshfix__geometry_counts *c, int policy, meshfix__geometry_plan *l)
+{
+    size_t t = 0, n = c->triangles, p = c->patches, b = c->boundary, pairs = c->boundary + c->rings;
+    size_t ring = c->largest_ring, vis = policy == MESHFIX_POLICY_VISIBILITY ? p : 0, rest = p - vis;
+    int ok = meshfix__place(&t, &l->confidence, p, sizeof(float)) && meshfix__place(&t, &l->patch_kind, p, 1) &&
+             meshfix__place(&t, &l->patch_unit, p, sizeof(unsigned int)) && meshfix__place(&t, &l->patch_turn, p, 1) &&
+             meshfix__place(&t, &l->triangle_unit, n, sizeof(unsigned int)) &&
+             /* a grid entry at most for each end and the middle of a segment */
+             meshfix__place(&t, &l->segments, b, sizeof(meshfix__segment)) &&
+             meshfix__place(&t, &l->pairs, pairs, sizeof(meshfix__pair)) &&
+             meshfix__place(&t, &l->pair_scratch, pairs, sizeof(meshfix__pair)) &&
+             meshfix__place(&t, &l->ring_work, ring, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->ring_members, ring, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->ring_angles, ring, sizeof(double)) &&
+             meshfix__place(&t, &l->grid_start, meshfix__grid_buckets(b) + 1, sizeof(unsigned int)) &&
+             b <= ((size_t)-1) / 3 && meshfix__place(&t, &l->grid_items, 3 * b, sizeof(meshfix__cell_item)) &&
+             meshfix__place(&t, &l->parent, p, sizeof(unsigned int)) && meshfix__place(&t, &l->parity, p, 1) &&
+             meshfix__place(&t, &l->turn, p, 1) && meshfix__place(&t, &l->front, vis, sizeof(double)) &&
+             meshfix__place(&t, &l->back, vis, sizeof(double)) && meshfix__place(&t, &l->merged_area, vis, sizeof(double)) &&
+             meshfix__place(&t, &l->side, rest, 1) && meshfix__place(&t, &l->normals, rest, 1) &&
+             meshfix__place(&t, &l->member_sides, rest, 1) &&
+             meshfix__place(&t, &l->member_samples, rest, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->first_unit, rest, sizeof(unsigned int)) &&
+             /* a unit for each patch at most */
+             meshfix__place(&t, &l->units, p, sizeof(meshfix__unit)) &&
+             p <= ((size_t)-1) / 9 && meshfix__place(&t, &l->unit_slots, 9 * p, sizeof(float)) &&
+             meshfix__place(&t, &l->unit_ids, p, sizeof(unsigned int)) &&
+             meshfix__place_nodes(&t, &l->shell_nodes, p) &&
+             meshfix__place(&t, &l->shell_ids, p, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->patch_first, p, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->patch_end, p, sizeof(unsigned int)) && meshfix__place(&t, &l->nets, p, sizeof(int)) &&
+             meshfix__place(&t, &l->samples, vis, sizeof(unsigned int)) &&
+             /* a slot for each triangle at most; a tree's nodes are fewer
+                than its slots, plus one per unit and the top's root */
+             meshfix__place(&t, &l->unit_first, p + 1, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->unit_root, p, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->order, n, sizeof(unsigned int)) &&
+             n <= ((size_t)-1) / 9 - MESHFIX__SLOT_PAD &&
+             meshfix__place(&t, &l->corners, 9 * (n + MESHFIX__SLOT_PAD), sizeof(float)) &&
+             meshfix__place(&t, &l->by_index, n, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->cumulative_area, n, sizeof(double)) && n <= ((size_t)-1) / 4 &&
+             meshfix__place(&t, &l->morton_sort, 4 * n, sizeof(unsigned int)) &&
+             meshfix__place_nodes(&t, &l->nodes, n + p + 1);
+    l->total = t + MESHFIX__ARENA_ALIGN;
+    return ok && l->total > t;
 }
 
 /* Decides the patches of the policies that need rays (OUTWARD, AUTO,
    VISIBILITY) with the arrays of `arena`; the others decide patch by
    patch when they are oriented. Returns 0 when out of memory. */
-MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, meshfix__arena *arena, meshfix_report *r)
+MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, const meshfix__arena *arena, meshfix_report *r)
 {
     meshfix__geometry g;
     int policy = m->policy;
@@ -6184,11 +6210,11 @@ MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, meshfix__aren
     g.seed = m->options->seed;
     g.sigma = (double)m->options->evidence.sigma;
     g.ray_budget = meshfix__ray_budget(m);
-    m->confidence = (float *)meshfix__take(&g.arena, m->patch_count, sizeof(float));
-    m->patch_kind = (unsigned char *)meshfix__take(&g.arena, m->patch_count, 1);
-    g.patch_unit = (unsigned int *)meshfix__take(&g.arena, m->patch_count, sizeof(unsigned int));
-    g.patch_turn = (unsigned char *)meshfix__take(&g.arena, m->patch_count, 1);
-    g.triangle_unit = (unsigned int *)meshfix__take(&g.arena, m->triangle_count, sizeof(unsigned int));
+    m->confidence = (float *)meshfix__array(&g.arena, g.arena.plan.confidence, m->patch_count);
+    m->patch_kind = (unsigned char *)meshfix__array(&g.arena, g.arena.plan.patch_kind, m->patch_count);
+    g.patch_unit = (unsigned int *)meshfix__array(&g.arena, g.arena.plan.patch_unit, m->patch_count);
+    g.patch_turn = (unsigned char *)meshfix__array(&g.arena, g.arena.plan.patch_turn, m->patch_count);
+    g.triangle_unit = (unsigned int *)meshfix__array(&g.arena, g.arena.plan.triangle_unit, m->triangle_count);
     if (!m->confidence || !m->patch_kind || !g.patch_unit || !g.patch_turn || !g.triangle_unit)
         return 0;
     meshfix__fit_frame(&g.bvh, m);
@@ -6458,12 +6484,18 @@ MESHFIX__PRIVATE int meshfix__needs_geometry(const meshfix__mesh *m, int policy)
 MESHFIX__PRIVATE void meshfix__explain(meshfix__mesh *m, const meshfix_report *r, unsigned int requirements,
                                       meshfix_check_failure *f);
 
+/* The caller's scratch beyond the topology's arrays (base NULL: none). */
+typedef struct meshfix__block {
+    unsigned char *base;
+    size_t size;
+} meshfix__block;
+
 /* Stages 2 to 5 on a bound mesh; fills r and the component outputs. The
    counts that only describe the mesh (duplicates, non-manifold vertices,
    inconsistent edges, Euler characteristic) are skipped when `full` is 0:
    the caller asked for neither a report nor components. */
 MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, const meshfix_options *o, int full,
-                                                 const meshfix_memory_options *allocator, meshfix__arena *rest,
+                                                 const meshfix_memory_options *allocator, const meshfix__block *rest,
                                                  meshfix_report *r)
 {
     meshfix__edge_counts edges;
@@ -6494,26 +6526,22 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
            second allocation */
         meshfix__geometry_counts counts;
         meshfix__arena arena;
-        size_t bytes;
         meshfix__count_geometry(m, &counts);
-        bytes = meshfix__geometry_bytes(&counts, policy);
-        if (bytes == 0)
+        if (!meshfix__plan_geometry(&counts, policy, &arena.plan))
             return MESHFIX_ERROR_TOO_LARGE;
         if (rest->base != NULL) {
-            if (rest->size - rest->used < bytes)
+            if (rest->size < arena.plan.total)
                 return MESHFIX_ERROR_SCRATCH_TOO_SMALL;
-            arena.base = rest->base + rest->used;
+            arena.base = rest->base;
             own = NULL;
         } else {
-            own = (unsigned char *)meshfix__allocate(allocator, bytes, 1);
+            own = (unsigned char *)meshfix__allocate(allocator, arena.plan.total, 1);
             if (own == NULL)
                 return MESHFIX_ERROR_OUT_OF_MEMORY;
             arena.base = own;
         }
-        /* offsets in the arena are aligned to up to 64: so is its start */
-        arena.used = 0;
-        arena.size = bytes - MESHFIX__ARENA_SLACK;
-        arena.base += (MESHFIX__ARENA_SLACK - (size_t)arena.base % MESHFIX__ARENA_SLACK) % MESHFIX__ARENA_SLACK;
+        /* offsets are aligned to up to 64: so is the start */
+        arena.base += (MESHFIX__ARENA_ALIGN - (size_t)arena.base % MESHFIX__ARENA_ALIGN) % MESHFIX__ARENA_ALIGN;
         if (!meshfix__decide_by_geometry(m, &arena, r)) {
             meshfix__release(allocator, own);
             return MESHFIX_ERROR_OUT_OF_MEMORY;
@@ -6682,7 +6710,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call, const meshfix_
     meshfix_report r;
     meshfix_options options;
     meshfix_outputs outputs;
-    meshfix__arena rest;
+    meshfix__block rest;
     unsigned char *raw, *block;
     size_t vertex_range = 0, topology, joined;
     int policy = call->policy, full;
@@ -7145,9 +7173,10 @@ MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count,
 {
     meshfix__plan plan;
     meshfix__geometry_counts worst;
+    meshfix__geometry_plan geometry;
     meshfix__input in;
     meshfix_options zero;
-    size_t geometry, triangles = index_count / 3;
+    size_t triangles = index_count / 3;
     int policy = options != NULL ? (int)options->policy : (int)MESHFIX_POLICY_AUTO;
     static const float some_position[3] = {0, 0, 0};
     MESHFIX_MEMSET(&zero, 0, sizeof(zero));
@@ -7163,10 +7192,9 @@ MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count,
     /* the worst mesh: a soup, every triangle its own patch, every edge a boundary or in a ring */
     worst.triangles = worst.patches = triangles;
     worst.boundary = worst.rings = worst.largest_ring = 3 * triangles;
-    geometry = meshfix__geometry_bytes(&worst, policy);
-    if (geometry == 0 || plan.total + 16 + geometry < geometry)
+    if (!meshfix__plan_geometry(&worst, policy, &geometry) || plan.total + 16 + geometry.total < geometry.total)
         return 0;
-    return plan.total + 16 + geometry;
+    return plan.total + 16 + geometry.total;
 }
 
 MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const void *positions, size_t vertex_count,

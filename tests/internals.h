@@ -28,12 +28,16 @@ static unsigned char *bind_mesh(meshfix__mesh *m, const meshfix_options *o, cons
     return block;
 }
 
-/* An arena of its own for the geometric internals (free arena->base). */
-static void make_arena(meshfix__arena *arena, size_t bytes)
+/* An arena of its own for the trees of a mesh of `triangles` in one
+   unit, laid out as the library lays out its own (free arena->base). */
+static void make_arena(meshfix__arena *arena, size_t triangles)
 {
-    arena->base = (unsigned char *)malloc(bytes);
-    arena->used = 0;
-    arena->size = bytes;
+    meshfix__geometry_counts counts;
+    memset(&counts, 0, sizeof(counts));
+    counts.triangles = triangles;
+    counts.patches = 1;
+    meshfix__plan_geometry(&counts, MESHFIX_POLICY_AUTO, &arena->plan);
+    arena->base = (unsigned char *)malloc(arena->plan.total);
 }
 
 /* The slots of every triangle with an area, as one unit, in an arena of
@@ -45,7 +49,7 @@ static int whole_unit(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena 
     for (t = 0; t < m->triangle_count; ++t)
         units[t] = meshfix__has_area(m, t) ? 0 : MESHFIX__NONE;
     memset(bvh, 0, sizeof(*bvh));
-    make_arena(bvh_arena, (sizeof(meshfix__node) + 9 * sizeof(float) + 48) * (m->triangle_count + 2) + 4096);
+    make_arena(bvh_arena, m->triangle_count);
     meshfix__fit_frame(bvh, m);
     return meshfix__prepare_bvh(bvh, m, bvh_arena, units, 1);
 }
