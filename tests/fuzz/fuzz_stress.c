@@ -1552,6 +1552,9 @@ static expectation expect_run(const fuzz_case *fc, const call_options *co, const
             e.required |= BIT(MESHFIX_ERROR_POSITIONS_REQUIRED);
         if (!has_positions && co->policy == MESHFIX_POLICY_NORMALS)
             e.allowed |= BIT(MESHFIX_ERROR_POSITIONS_REQUIRED);
+        if (co->policy == MESHFIX_POLICY_NORMALS && o->evidence.triangle_normals == NULL &&
+            o->evidence.vertex_normals == NULL)
+            e.required |= BIT(MESHFIX_ERROR_NORMALS_REQUIRED);
     } else if (co->clearly_invalid) {
         e.allowed |= BIT(MESHFIX_ERROR_INVALID_ARGUMENT); /* options inspect does not use */
     }
