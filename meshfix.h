@@ -4288,7 +4288,8 @@ MESHFIX__PRIVATE void meshfix__find_partners(const meshfix__partner_task *task, 
             middle[axis] = 0.5 * (s->p[axis] + s->q[axis]);
         if (!meshfix__cells_usable(lo, hi))
             continue;
-        for (ring = 0; ring < 2; ++ring) {
+        /* past the candidate limit nothing more is read: the walk stops */
+        for (ring = 0; ring < 2 && looked < MESHFIX__NEAREST_CANDIDATES; ++ring) {
             double from[3], to[3];
             if (ring == 1) {
                 /* the cells of the margin that come near enough to the middle */
@@ -4301,9 +4302,9 @@ MESHFIX__PRIVATE void meshfix__find_partners(const meshfix__partner_task *task, 
                 MESHFIX_MEMCPY(from, inner_lo, sizeof(from));
                 MESHFIX_MEMCPY(to, inner_hi, sizeof(to));
             }
-            for (x = from[0]; x <= to[0]; ++x)
-                for (y = from[1]; y <= to[1]; ++y)
-                    for (z = from[2]; z <= to[2]; ++z) {
+            for (x = from[0]; x <= to[0] && looked < MESHFIX__NEAREST_CANDIDATES; ++x)
+                for (y = from[1]; y <= to[1] && looked < MESHFIX__NEAREST_CANDIDATES; ++y)
+                    for (z = from[2]; z <= to[2] && looked < MESHFIX__NEAREST_CANDIDATES; ++z) {
                         size_t bucket, j;
                         int inner = x >= inner_lo[0] && x <= inner_hi[0] && y >= inner_lo[1] && y <= inner_hi[1] &&
                                     z >= inner_lo[2] && z <= inner_hi[2];
