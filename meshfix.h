@@ -782,7 +782,8 @@ typedef struct meshfix__geometry_plan {
     /* the decisions: per patch, per triangle */
     meshfix__span confidence, patch_kind, patch_unit, patch_turn, triangle_unit;
     /* coherence: segments, pairs and their sort, a ring's radial order, the grid */
-    meshfix__span segments, pairs, pair_scratch, ring_work, ring_members, ring_angles, grid_start, grid_items;
+    meshfix__span segments, pairs, pair_scratch, ring_work, ring_members, ring_angles, grid_start, grid_items,
+        grid_occupied;
     /* the merge; VISIBILITY's escapes and areas, the others' anchors */
     meshfix__span parent, parity, turn, front, back, merged_area, side, normals;
     /* the members' sides (not VISIBILITY) */
@@ -4013,7 +4014,14 @@ typedef struct meshfix__grid {
     size_t mask;
     unsigned int *start;       /* per bucket + 1 */
     meshfix__cell_item *items; /* bucket by bucket */
+    unsigned char *occupied;   /* a bit per bucket: most cells a search walks are empty, and this is
+                                  read from cache where `start` is not */
 } meshfix__grid;
+
+MESHFIX__PRIVATE int meshfix__bucket_occupied(const meshfix__grid *grid, size_t bucket)
+{
+    return (grid->occupied[bucket >> 3] >> (bucket & 7)) & 1;
+}
 
 MESHFIX__PRIVATE size_t meshfix__grid_bucket(const meshfix__grid *grid, double x, double y, double z)
 {
@@ -4203,10 +4211,17 @@ MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix
     grid->start = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.grid_start, buckets + 1);
     if (grid->start == NULL)
         return 0;
+    grid->occupied = (unsigned char *)meshfix__array(&g->arena, g->arena.plan.grid_occupied, buckets / 8);
+    if (grid->occupied == NULL)
+        return 0;
     MESHFIX_MEMSET(grid->start, 0, (buckets + 1) * sizeof(unsigned int));
+    MESHFIX_MEMSET(grid->occupied, 0, buckets / 8);
     meshfix__grid_pass(grid, segments, n, 0);
-    for (k = 0; k < buckets; ++k)
+    for (k = 0; k < buckets; ++k) {
+        if (grid->start[k + 1] != 0)
+            grid->occupied[k >> 3] = (unsigned char)(grid->occupied[k >> 3] | (1u << (k & 7)));
         grid->start[k + 1] += grid->start[k];
+    }
     grid->items = (meshfix__cell_item *)meshfix__array(&g->arena, g->arena.plan.grid_items, grid->start[buckets]);
     if (grid->items == NULL)
         return 0;
@@ -4312,6 +4327,8 @@ MESHFIX__PRIVATE void meshfix__find_partners(const meshfix__partner_task *task, 
                             !meshfix__cell_within(grid, x, y, z, middle, longest_half + best))
                             continue;
                         bucket = meshfix__grid_bucket(grid, x, y, z);
+                        if (!meshfix__bucket_occupied(grid, bucket))
+                            continue;
                         for (j = bucket == 0 ? 0 : grid->start[bucket - 1];
                              j < grid->start[bucket] && looked < MESHFIX__NEAREST_CANDIDATES; ++j, ++looked) {
                             const meshfix__cell_item *item = &grid->items[j];
@@ -6164,6 +6181,7 @@ MESHFIX__PRIVATE int meshfix__plan_geometry(const meshfix__geometry_counts *c, i
              meshfix__place(&t, &l->ring_members, ring, sizeof(unsigned int)) &&
              meshfix__place(&t, &l->ring_angles, ring, sizeof(double)) &&
              meshfix__place(&t, &l->grid_start, meshfix__grid_buckets(b) + 1, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->grid_occupied, meshfix__grid_buckets(b) / 8, 1) &&
              b <= ((size_t)-1) / 3 && meshfix__place(&t, &l->grid_items, 3 * b, sizeof(meshfix__cell_item)) &&
              meshfix__place(&t, &l->parent, p, sizeof(unsigned int)) && meshfix__place(&t, &l->parity, p, 1) &&
              meshfix__place(&t, &l->turn, p, 1) && meshfix__place(&t, &l->front, vis, sizeof(double)) &&
