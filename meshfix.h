@@ -5258,16 +5258,6 @@ MESHFIX__PRIVATE void meshfix__verdict_from_weights(meshfix__unit *u, double sig
     u->confidence = (float)meshfix__mind(1.0, flip ? -high : meshfix__maxd(0.0, low));
 }
 
-/* Whether more samples could change the verdict: the weighing with the
-   mean anywhere within its bounds does not decide the same way. */
-MESHFIX__PRIVATE int meshfix__unsettled(const meshfix__unit *u, double sigma)
-{
-    double low, high;
-    int majority;
-    meshfix__weigh(u, sigma, &low, &high, &majority);
-    return low < 0 && high >= 0;
-}
-
 /* Whether evidence of weight w could turn the unit at all. */
 MESHFIX__PRIVATE int meshfix__could_turn(const meshfix__unit *u, double w)
 {
@@ -5288,6 +5278,37 @@ MESHFIX__PRIVATE unsigned int meshfix__ray_cap(const meshfix__geometry *g, const
     double share = total_area > 0 ? (double)g->ray_budget * u->area / total_area : 0.0;
     share = share < 4 * MESHFIX__BATCH ? 4 * MESHFIX__BATCH : share > 4096 ? 4096 : share;
     return (unsigned int)share;
+}
+
+/* Significant: the mean's bound nearest 0 is at least a tenth away; for
+   escaping rays, a third: hills hide part of a terrain's top from the sky
+   and nothing hides its underside, yet it faces up. An enclosed side (the
+   inside of a car body in a soup) blocks most of its rays. */
+MESHFIX__PRIVATE double meshfix__significance_floor(const meshfix__unit *u)
+{
+    return u->kind == MESHFIX_EVIDENCE_VISIBILITY ? 0.35 : 0.1;
+}
+
+MESHFIX__PRIVATE int meshfix__significant(const meshfix__unit *u, double sigma)
+{
+    return MESHFIX_FABS(u->mean) - sigma * u->error >= meshfix__significance_floor(u);
+}
+
+/* Whether sampling can stop: the verdict is settled and, where it turns
+   the unit, the evidence is significant or cannot become so within its
+   bounds. A turn on evidence short of significance is not taken (the
+   unit keeps), so stopping at a settled turn threw away what a few more
+   batches would have shown. */
+MESHFIX__PRIVATE int meshfix__sampled_enough(const meshfix__unit *u, double sigma)
+{
+    double low, high;
+    int majority;
+    meshfix__weigh(u, sigma, &low, &high, &majority);
+    if (low >= 0)
+        return 1;
+    if (high >= 0)
+        return 0;
+    return meshfix__significant(u, sigma) || MESHFIX_FABS(u->mean) + sigma * u->error < meshfix__significance_floor(u);
 }
 
 /* Samples evidence of one kind for unit u until its verdict is settled or
@@ -5313,7 +5334,7 @@ MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned in
         u->error = meshfix__vote_error(&votes);
         /* unanimous votes cannot move their mean: past 8 batches more of
            them would only settle a tie, which keeps anyway */
-        if (!meshfix__unsettled(u, g->sigma) || (i + 1 >= 8 * MESHFIX__BATCH && (votes.plus == votes.n || votes.minus == votes.n)))
+        if (meshfix__sampled_enough(u, g->sigma) || (i + 1 >= 8 * MESHFIX__BATCH && (votes.plus == votes.n || votes.minus == votes.n)))
             break;
     }
     u->mean = sign * meshfix__vote_mean(&votes);
@@ -5321,14 +5342,6 @@ MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned in
     return meshfix__vote_mean(&votes);
 }
 
-/* Significant: the mean's bound nearest 0 is at least a tenth away; for
-   escaping rays, a third: hills hide part of a terrain's top from the sky
-   and nothing hides its underside, yet it faces up. An enclosed side (the
-   inside of a car body in a soup) blocks most of its rays. */
-MESHFIX__PRIVATE int meshfix__significant(const meshfix__unit *u, double sigma)
-{
-    return MESHFIX_FABS(u->mean) - sigma * u->error >= (u->kind == MESHFIX_EVIDENCE_VISIBILITY ? 0.35 : 0.1);
-}
 
 /* An edge of unit u passes through a triangle of unit e. */
 MESHFIX__PRIVATE int meshfix__crosses(const meshfix__geometry *g, unsigned int u, unsigned int e, size_t *rays)
