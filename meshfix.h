@@ -787,7 +787,7 @@ typedef struct meshfix__geometry_plan {
     /* the merge; VISIBILITY's escapes and areas, the others' anchors */
     meshfix__span parent, parity, turn, front, back, merged_area, side, normals;
     /* the members' sides (not VISIBILITY) */
-    meshfix__span member_sides, member_samples, first_unit;
+    meshfix__span member_asked, member_sides, member_samples, member_surface, unit_seams, first_unit;
     /* units, the tree over shells, the nets of rings, VISIBILITY's samples */
     meshfix__span units, unit_slots, unit_ids, shell_nodes, shell_ids, patch_first, patch_end, nets, samples;
     /* the trees over the slots */
@@ -5061,18 +5061,23 @@ MESHFIX__PRIVATE void meshfix__sum_units(meshfix__geometry *g)
    neighbours, which the joins made again may route through (elsewhere the
    members agree, and their sides only cost rays: on a head cut into 500
    patches with a few folded fins, a third of the whole call went to
-   asking every member). The joins are then made again,
-   strongest first, and a join that would put two members whose sides are
-   known on opposite sides of their unit is refused. Clear normals of the
+   asking every member). A patch beside a unit whose seam runs only
+   roughly along it (a turn the joins refuse while neither side is known:
+   a patch of a cut head) is asked against that unit's surface, a hole of
+   which it fills, when the unit is closed but for its holes; a seam
+   matched one way only (a part touching another) is not. The joins are
+   then made again, strongest first, and a join that would put two
+   members whose sides are known on opposite sides of their unit is
+   refused. Clear normals of the
    caller's on a patch anchor it from the start (meshfix__anchor_normals). */
 
 #define MESHFIX__STREAM_MEMBER 6
 #define MESHFIX__MEMBER_SAMPLES 64 /* at most, per member */
 #define MESHFIX__SIDE_CLEAR 0.5    /* a side is known when the mean's bound nearest 0 is this far from it */
 
-/* One sample of member p of unit u: +1 when its front is outside the
-   unit's surface and its back inside, -1 the other way round, 0 when both
-   sides agree (an open surface, a ray through a gap). */
+/* One sample of member p against the surface of unit u: +1 when its
+   front is outside that surface and its back inside, -1 the other way
+   round, 0 when both sides agree (an open surface, a ray through a gap). */
 MESHFIX__PRIVATE int meshfix__member_vote(const meshfix__geometry *g, unsigned int p, unsigned int u, unsigned int index)
 {
     unsigned int state = meshfix__stream(g, p, MESHFIX__STREAM_MEMBER, index), t, side;
@@ -5080,7 +5085,7 @@ MESHFIX__PRIVATE int meshfix__member_vote(const meshfix__geometry *g, unsigned i
     double n[3];
     int inside[2];
     meshfix__ray ray;
-    t = meshfix__sample_slots(g, g->bvh.unit_first[u], g->patch_first[p], g->patch_end[p], &state, point, n);
+    t = meshfix__sample_slots(g, g->bvh.unit_first[g->patch_unit[p]], g->patch_first[p], g->patch_end[p], &state, point, n);
     meshfix__random_direction(&state, d);
     back[0] = -d[0], back[1] = -d[1], back[2] = -d[2];
     for (side = 0; side < 2; ++side) {
@@ -5092,13 +5097,14 @@ MESHFIX__PRIVATE int meshfix__member_vote(const meshfix__geometry *g, unsigned i
     return meshfix__side_vote(inside[1], inside[0]);
 }
 
-/* The side of member p's front, in its consistent frame: +1 out of its
-   unit's surface, -1 into it, 0 when its crossings do not tell; samples a
-   batch at a time until that is settled. *samples gets their number. */
-MESHFIX__PRIVATE signed char meshfix__member_side(const meshfix__geometry *g, unsigned int p, unsigned int *samples)
+/* The side of member p's front, in its consistent frame: +1 out of the
+   surface of unit u, -1 into it, 0 when its crossings do not tell; samples
+   a batch at a time until that is settled. *samples gets their number. */
+MESHFIX__PRIVATE signed char meshfix__member_side(const meshfix__geometry *g, unsigned int p, unsigned int u,
+                                                 unsigned int *samples)
 {
     meshfix__votes votes;
-    unsigned int i, u = g->patch_unit[p];
+    unsigned int i;
     double mean = 0, error = 1;
     MESHFIX_MEMSET(&votes, 0, sizeof(votes));
     for (i = 0; i < MESHFIX__MEMBER_SAMPLES; ++i) {
@@ -5116,10 +5122,28 @@ MESHFIX__PRIVATE signed char meshfix__member_side(const meshfix__geometry *g, un
     return (signed char)(meshfix__vote_mean(&votes) > 0 ? 1 : -1);
 }
 
+/* Per unit, for the fills: its boundary edges' length, the part of it
+   that found a partner, and whether a member (not a fill) knows its side. */
+typedef struct meshfix__unit_seams {
+    double boundary, partnered;
+    unsigned char sided;
+} meshfix__unit_seams;
+
+#define MESHFIX__FILL_CLOSED 0.9 /* a unit a fill is asked against: this share of its seams partnered */
+
+/* Why a member is asked its side (meshfix__mark_frontier). */
+#define MESHFIX__ASK_TURN 1     /* an end of a pair turned against itself within a unit */
+#define MESHFIX__ASK_PARTNER 2  /* a partner of one in its unit */
+#define MESHFIX__ASK_FILL 3     /* the small end of a refused turn between units, against the other's surface */
+#define MESHFIX__ASK_ANCHOR 4   /* the large end of one whose small end's side is known */
+
 typedef struct meshfix__member_task {
     const meshfix__geometry *g;
-    signed char *sides;    /* per patch: comes in non-zero where the side is asked */
-    unsigned int *samples; /* per patch */
+    const signed char *asked;    /* per patch: MESHFIX__ASK_*, 0 when not asked */
+    int first_round;             /* asks all but the anchors (which need the fills' sides); else the anchors */
+    const unsigned int *surface; /* per patch: the unit whose surface it is asked against */
+    signed char *sides;          /* per patch: written where asked */
+    unsigned int *samples;       /* per patch: written where asked */
 } meshfix__member_task;
 
 MESHFIX__PRIVATE void meshfix__member_chunk(void *context, size_t chunk)
@@ -5128,61 +5152,156 @@ MESHFIX__PRIVATE void meshfix__member_chunk(void *context, size_t chunk)
     const meshfix__geometry *g = task->g;
     size_t p, end = (chunk + 1) * MESHFIX__UNITS_PER_TASK;
     for (p = chunk * MESHFIX__UNITS_PER_TASK; p < end && p < g->m->patch_count; ++p) {
-        int asked = task->sides[p] != 0;
+        int asked = task->first_round ? task->asked[p] != 0 && task->asked[p] != MESHFIX__ASK_ANCHOR
+                                      : task->asked[p] == MESHFIX__ASK_ANCHOR;
+        if (!asked && !task->first_round)
+            continue;
         task->sides[p] = 0;
         task->samples[p] = 0;
-        if (asked && g->patch_first[p] < g->patch_end[p] && g->bvh.unit_root[g->patch_unit[p]] != MESHFIX__NONE)
-            task->sides[p] = meshfix__member_side(g, (unsigned int)p, &task->samples[p]);
+        if (asked && g->patch_first[p] < g->patch_end[p] && g->bvh.unit_root[task->surface[p]] != MESHFIX__NONE)
+            task->sides[p] = meshfix__member_side(g, (unsigned int)p, task->surface[p], &task->samples[p]);
     }
 }
 
-/* Marks in sides the members near a turn: both ends of every pair
-   within a unit whose members are turned against each other (1), then
-   their partners in the unit (2). Returns 0 when there is none. */
+/* Marks in `asked` the members near a turn: both ends of every pair
+   within a unit whose members are turned against each other, then their
+   partners in the unit. Also, of a pair between two units that would
+   join them with one turned against the other but was refused for want
+   of a known side (a patch alone beside a seam that runs only roughly
+   along, or is matched one way), the end in the smaller unit: it is
+   asked against the other unit's surface, a hole of which it fills
+   (surface[p] gets the unit each is asked against). Returns 0 when there
+   is none. */
+MESHFIX__PRIVATE unsigned int meshfix__unit_slots(const meshfix__geometry *g, unsigned int u)
+{
+    return g->bvh.unit_first[u + 1] - g->bvh.unit_first[u];
+}
+
+/* Whether pair q is such a refused turn between units; its ends in the
+   smaller and the larger unit. */
+MESHFIX__PRIVATE int meshfix__refused_turn(const meshfix__geometry *g, const meshfix__pair *q, unsigned int *small,
+                                          unsigned int *large)
+{
+    unsigned int ua = g->patch_unit[q->a], ub = g->patch_unit[q->b], na, nb;
+    double c = q->c * (g->patch_turn[q->a] ? -1.0 : 1.0) * (g->patch_turn[q->b] ? -1.0 : 1.0);
+    if (ua == ub || !(q->length > 0) || !(-c > MESHFIX__JOIN_STRENGTH * q->length) || q->ring ||
+        !meshfix__paired_both_ways(q))
+        return 0;
+    na = meshfix__unit_slots(g, ua), nb = meshfix__unit_slots(g, ub);
+    *small = na < nb || (na == nb && ua > ub) ? q->a : q->b;
+    *large = *small == q->a ? q->b : q->a;
+    return 1;
+}
+
 MESHFIX__PRIVATE int meshfix__mark_frontier(const meshfix__geometry *g, const meshfix__coherence *coherence,
-                                           signed char *sides)
+                                           signed char *asked, unsigned int *surface, meshfix__unit_seams *seams)
 {
     size_t i;
+    unsigned int p, small, large;
     int any = 0;
-    MESHFIX_MEMSET(sides, 0, g->m->patch_count);
+    MESHFIX_MEMSET(asked, 0, g->m->patch_count);
+    MESHFIX_MEMSET(seams, 0, g->unit_count * sizeof(meshfix__unit_seams));
+    for (i = 0; i < coherence->segment_count; ++i) {
+        const meshfix__segment *e = &coherence->segments[i];
+        meshfix__unit_seams *x = &seams[g->patch_unit[e->patch]];
+        x->boundary += e->length;
+        x->partnered += e->partner != MESHFIX__NONE ? e->length : 0.0;
+    }
+    for (p = 0; p < g->m->patch_count; ++p)
+        surface[p] = g->patch_unit[p];
     for (i = 0; i < coherence->pair_count; ++i) {
         unsigned int a = coherence->pairs[i].a, b = coherence->pairs[i].b;
         if (g->patch_unit[a] != g->patch_unit[b] || g->patch_turn[a] == g->patch_turn[b])
             continue;
-        sides[a] = sides[b] = 1;
+        asked[a] = asked[b] = MESHFIX__ASK_TURN;
         any = 1;
     }
     for (i = 0; i < coherence->pair_count; ++i) {
         unsigned int a = coherence->pairs[i].a, b = coherence->pairs[i].b;
         if (g->patch_unit[a] != g->patch_unit[b])
             continue;
-        if (sides[a] == 1 && sides[b] == 0)
-            sides[b] = 2;
-        if (sides[b] == 1 && sides[a] == 0)
-            sides[a] = 2;
+        if (asked[a] == MESHFIX__ASK_TURN && asked[b] == 0)
+            asked[b] = MESHFIX__ASK_PARTNER;
+        if (asked[b] == MESHFIX__ASK_TURN && asked[a] == 0)
+            asked[a] = MESHFIX__ASK_PARTNER;
     }
+    for (i = 0; i < coherence->pair_count; ++i)
+        if (meshfix__refused_turn(g, &coherence->pairs[i], &small, &large) && asked[small] == 0 &&
+            seams[g->patch_unit[large]].partnered >= MESHFIX__FILL_CLOSED * seams[g->patch_unit[large]].boundary) {
+            asked[small] = MESHFIX__ASK_FILL;
+            surface[small] = g->patch_unit[large];
+            any = 1;
+        }
     return any;
+}
+
+/* The large ends of the refused turns whose small end now knows its side,
+   to be asked against their own unit: the join is checked only where both
+   sides are known. Returns 0 when there is none. */
+MESHFIX__PRIVATE int meshfix__mark_anchors(const meshfix__geometry *g, const meshfix__coherence *coherence,
+                                          signed char *asked, const signed char *sides)
+{
+    size_t i;
+    unsigned int small, large;
+    int any = 0;
+    for (i = 0; i < coherence->pair_count; ++i)
+        if (meshfix__refused_turn(g, &coherence->pairs[i], &small, &large) && asked[small] == MESHFIX__ASK_FILL &&
+            sides[small] != 0 && asked[large] == 0) {
+            asked[large] = MESHFIX__ASK_ANCHOR;
+            any = 1;
+        }
+    return any;
+}
+
+/* A fill forgets its side when no member of the other unit knows its own:
+   the join is checked against the side its super-patch carries, and one
+   known side alone would only lower the bar of the join. */
+MESHFIX__PRIVATE void meshfix__drop_unanchored(const meshfix__geometry *g, const meshfix__coherence *coherence,
+                                              const signed char *asked, signed char *sides, meshfix__unit_seams *seams)
+{
+    size_t i;
+    unsigned int p, small, large;
+    for (p = 0; p < g->m->patch_count; ++p)
+        if (sides[p] != 0 && asked[p] != MESHFIX__ASK_FILL)
+            seams[g->patch_unit[p]].sided = 1;
+    for (i = 0; i < coherence->pair_count; ++i)
+        if (meshfix__refused_turn(g, &coherence->pairs[i], &small, &large) && asked[small] == MESHFIX__ASK_FILL &&
+            !seams[g->patch_unit[large]].sided)
+            sides[small] = 0;
+}
+
+MESHFIX__PRIVATE void meshfix__ask_members(meshfix__member_task *task)
+{
+    size_t chunks = (task->g->m->patch_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK, c;
+    if (task->g->o->parallel_for != NULL)
+        task->g->o->parallel_for(meshfix__member_chunk, task, chunks, task->g->o->parallel_user);
+    else
+        for (c = 0; c < chunks; ++c)
+            meshfix__member_chunk(task, c);
 }
 
 /* The sides of the members near a turn (sides[p] 0 elsewhere);
    returns 0 when there is none, and adds the rays cast to *rays. */
 MESHFIX__PRIVATE int meshfix__measure_members(const meshfix__geometry *g, const meshfix__coherence *coherence,
-                                              signed char *sides, unsigned int *samples, size_t *rays)
+                                              signed char *asked, signed char *sides, unsigned int *surface,
+                                              meshfix__unit_seams *seams, unsigned int *samples, size_t *rays)
 {
     const meshfix__mesh *m = g->m;
     meshfix__member_task task;
     unsigned int p;
-    size_t chunks = (m->patch_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK, c;
-    if (!meshfix__mark_frontier(g, coherence, sides))
+    if (!meshfix__mark_frontier(g, coherence, asked, surface, seams))
         return 0;
     task.g = g;
+    task.asked = asked;
+    task.surface = surface;
     task.sides = sides;
     task.samples = samples;
-    if (g->o->parallel_for != NULL)
-        g->o->parallel_for(meshfix__member_chunk, &task, chunks, g->o->parallel_user);
-    else
-        for (c = 0; c < chunks; ++c)
-            meshfix__member_chunk(&task, c);
+    task.first_round = 1;
+    meshfix__ask_members(&task);
+    task.first_round = 0;
+    if (meshfix__mark_anchors(g, coherence, asked, sides))
+        meshfix__ask_members(&task);
+    meshfix__drop_unanchored(g, coherence, asked, sides, seams);
     for (p = 0; p < m->patch_count; ++p)
         *rays += 2 * (size_t)samples[p];
     return 1;
@@ -5883,9 +6002,12 @@ MESHFIX__PRIVATE int meshfix__form_units(meshfix__geometry *g, const meshfix__co
     size_t patches = m->patch_count, joins;
     signed char *sides = (signed char *)meshfix__array(&g->arena, g->arena.plan.member_sides, patches);
     unsigned int *samples = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.member_samples, patches);
+    signed char *asked = (signed char *)meshfix__array(&g->arena, g->arena.plan.member_asked, patches);
+    unsigned int *surface = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.member_surface, patches);
+    meshfix__unit_seams *seams = (meshfix__unit_seams *)meshfix__array(&g->arena, g->arena.plan.unit_seams, patches); /* units <= patches */
     unsigned int *first_unit = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.first_unit, patches);
     unsigned int p, same_units = 1;
-    if (!sides || !samples || !first_unit)
+    if (!asked || !sides || !samples || !surface || !seams || !first_unit)
         return 0;
     meshfix__anchor_normals(g, merge);
     joins = meshfix__merge_by_coherence(merge, coherence->pairs, coherence->pair_count);
@@ -5893,7 +6015,7 @@ MESHFIX__PRIVATE int meshfix__form_units(meshfix__geometry *g, const meshfix__co
     if (!meshfix__prepare_units(g))
         return 0;
     meshfix__build_unit_trees(g);
-    if (meshfix__measure_members(g, coherence, sides, samples, &r->evidence.rays_cast)) {
+    if (meshfix__measure_members(g, coherence, asked, sides, surface, seams, samples, &r->evidence.rays_cast)) {
         MESHFIX_MEMCPY(first_unit, g->patch_unit, patches * sizeof(unsigned int));
         meshfix__reset_merge(merge, (unsigned int)patches);
         meshfix__anchor_normals(g, merge);
@@ -6202,6 +6324,8 @@ MESHFIX__PRIVATE int meshfix__plan_geometry(const meshfix__geometry_counts *c, i
              meshfix__place(&t, &l->side, rest, 1) && meshfix__place(&t, &l->normals, rest, 1) &&
              meshfix__place(&t, &l->member_sides, rest, 1) &&
              meshfix__place(&t, &l->member_samples, rest, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->member_surface, rest, sizeof(unsigned int)) &&
+             meshfix__place(&t, &l->member_asked, rest, 1) && meshfix__place(&t, &l->unit_seams, rest, sizeof(meshfix__unit_seams)) &&
              meshfix__place(&t, &l->first_unit, rest, sizeof(unsigned int)) &&
              /* a unit for each patch at most */
              meshfix__place(&t, &l->units, p, sizeof(meshfix__unit)) &&
