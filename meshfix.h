@@ -5085,7 +5085,9 @@ MESHFIX__PRIVATE int meshfix__member_vote(const meshfix__geometry *g, unsigned i
     double n[3];
     int inside[2];
     meshfix__ray ray;
-    t = meshfix__sample_slots(g, g->bvh.unit_first[g->patch_unit[p]], g->patch_first[p], g->patch_end[p], &state, point, n);
+    /* sampled from its own unit's slots, its crossings counted on u's surface */
+    t = meshfix__sample_slots(g, g->bvh.unit_first[g->patch_unit[p]], g->patch_first[p], g->patch_end[p], &state,
+                              point, n);
     meshfix__random_direction(&state, d);
     back[0] = -d[0], back[1] = -d[1], back[2] = -d[2];
     for (side = 0; side < 2; ++side) {
@@ -5167,11 +5169,11 @@ MESHFIX__PRIVATE void meshfix__member_chunk(void *context, size_t chunk)
    within a unit whose members are turned against each other, then their
    partners in the unit. Also, of a pair between two units that would
    join them with one turned against the other but was refused for want
-   of a known side (a patch alone beside a seam that runs only roughly
-   along, or is matched one way), the end in the smaller unit: it is
-   asked against the other unit's surface, a hole of which it fills
-   (surface[p] gets the unit each is asked against). Returns 0 when there
-   is none. */
+   of a known side (a patch alone beside a seam paired both ways that
+   runs only roughly along), the end in the smaller unit, when the other
+   unit is closed but for its holes (most of its seams partnered): it is
+   asked against that unit's surface, a hole of which it fills (surface[p]
+   gets the unit each is asked against). Returns 0 when there is none. */
 MESHFIX__PRIVATE unsigned int meshfix__unit_slots(const meshfix__geometry *g, unsigned int u)
 {
     return g->bvh.unit_first[u + 1] - g->bvh.unit_first[u];
@@ -5430,7 +5432,7 @@ MESHFIX__PRIVATE int meshfix__sampled_enough(const meshfix__unit *u, double sigm
     return meshfix__significant(u, sigma) || MESHFIX_FABS(u->mean) + sigma * u->error < meshfix__significance_floor(u);
 }
 
-/* Samples evidence of one kind for unit u until its verdict is settled or
+/* Samples evidence of one kind for unit u until meshfix__sampled_enough or
    the cap is reached; the unit's mean (the votes' mean times `sign`),
    error and weight describe it. Returns the votes' mean. */
 MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned int index, meshfix__unit *u,
@@ -5453,14 +5455,14 @@ MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned in
         u->error = meshfix__vote_error(&votes);
         /* unanimous votes cannot move their mean: past 8 batches more of
            them would only settle a tie, which keeps anyway */
-        if (meshfix__sampled_enough(u, g->sigma) || (i + 1 >= 8 * MESHFIX__BATCH && (votes.plus == votes.n || votes.minus == votes.n)))
+        if (meshfix__sampled_enough(u, g->sigma) ||
+            (i + 1 >= 8 * MESHFIX__BATCH && (votes.plus == votes.n || votes.minus == votes.n)))
             break;
     }
     u->mean = sign * meshfix__vote_mean(&votes);
     u->error = meshfix__vote_error(&votes);
     return meshfix__vote_mean(&votes);
 }
-
 
 /* An edge of unit u passes through a triangle of unit e. */
 MESHFIX__PRIVATE int meshfix__crosses(const meshfix__geometry *g, unsigned int u, unsigned int e, size_t *rays)
@@ -6004,7 +6006,8 @@ MESHFIX__PRIVATE int meshfix__form_units(meshfix__geometry *g, const meshfix__co
     unsigned int *samples = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.member_samples, patches);
     signed char *asked = (signed char *)meshfix__array(&g->arena, g->arena.plan.member_asked, patches);
     unsigned int *surface = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.member_surface, patches);
-    meshfix__unit_seams *seams = (meshfix__unit_seams *)meshfix__array(&g->arena, g->arena.plan.unit_seams, patches); /* units <= patches */
+    /* a unit for each patch at most */
+    meshfix__unit_seams *seams = (meshfix__unit_seams *)meshfix__array(&g->arena, g->arena.plan.unit_seams, patches);
     unsigned int *first_unit = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.first_unit, patches);
     unsigned int p, same_units = 1;
     if (!asked || !sides || !samples || !surface || !seams || !first_unit)
@@ -6325,7 +6328,8 @@ MESHFIX__PRIVATE int meshfix__plan_geometry(const meshfix__geometry_counts *c, i
              meshfix__place(&t, &l->member_sides, rest, 1) &&
              meshfix__place(&t, &l->member_samples, rest, sizeof(unsigned int)) &&
              meshfix__place(&t, &l->member_surface, rest, sizeof(unsigned int)) &&
-             meshfix__place(&t, &l->member_asked, rest, 1) && meshfix__place(&t, &l->unit_seams, rest, sizeof(meshfix__unit_seams)) &&
+             meshfix__place(&t, &l->member_asked, rest, 1) &&
+             meshfix__place(&t, &l->unit_seams, rest, sizeof(meshfix__unit_seams)) &&
              meshfix__place(&t, &l->first_unit, rest, sizeof(unsigned int)) &&
              /* a unit for each patch at most */
              meshfix__place(&t, &l->units, p, sizeof(meshfix__unit)) &&
