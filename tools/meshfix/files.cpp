@@ -7,6 +7,7 @@ extern "C" {
 }
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstdio>
@@ -141,7 +142,7 @@ bool write_bytes(const std::string &path, const std::string &bytes, std::string 
     return true;
 }
 
-bool make_parent_directories(const std::string &file)
+bool make_parent_directories(const std::string &file, std::vector<std::string> *made)
 {
     /* from the first '/' after the first character: "/a/b/f" makes /a and
        /a/b, "a/b/f" makes a and a/b, "f" nothing */
@@ -149,8 +150,12 @@ bool make_parent_directories(const std::string &file)
         if (file[slash - 1] == '/')
             continue;
         std::string d = file.substr(0, slash);
-        if (mkdir(d.c_str(), 0777) != 0 && errno != EEXIST)
+        if (mkdir(d.c_str(), 0777) == 0) {
+            if (made != nullptr)
+                made->push_back(d);
+        } else if (errno != EEXIST) {
             return false;
+        }
     }
     return true;
 }
@@ -206,42 +211,74 @@ std::unique_ptr<MeshFile> load_file(const std::string &path, std::string &error)
 
 namespace {
 
-/* Every regular file under `directory`, as paths relative to it. */
-void list_files(const std::string &directory, const std::string &prefix, std::vector<std::string> &out)
-{
-    DIR *d = opendir(directory.c_str());
-    if (d == nullptr)
-        return;
-    while (struct dirent *e = readdir(d)) {
-        std::string name = e->d_name;
-        if (name == "." || name == "..")
-            continue;
-        if (is_directory(directory + "/" + name))
-            list_files(directory + "/" + name, prefix + name + "/", out);
-        else
-            out.push_back(prefix + name);
-    }
-    closedir(d);
-}
-
+/* Removes a temporary directory and everything in it (symbolic links
+   not followed: a temporary holds only what the tool made). */
 void remove_tree(const std::string &directory)
 {
-    std::vector<std::string> files;
-    list_files(directory, "", files);
-    for (const std::string &f : files)
-        std::remove((directory + "/" + f).c_str());
-    /* subdirectories deepest first: longer paths sort after their parents */
-    std::vector<std::string> dirs;
-    for (const std::string &f : files)
-        for (size_t slash = f.find('/'); slash != std::string::npos; slash = f.find('/', slash + 1))
-            dirs.push_back(directory + "/" + f.substr(0, slash));
-    std::sort(dirs.begin(), dirs.end(), [](const std::string &a, const std::string &b) { return a.size() > b.size(); });
-    for (const std::string &d : dirs)
-        rmdir(d.c_str());
+    DIR *d = opendir(directory.c_str());
+    if (d != nullptr) {
+        std::vector<std::string> names;
+        while (struct dirent *e = readdir(d))
+            if (std::strcmp(e->d_name, ".") != 0 && std::strcmp(e->d_name, "..") != 0)
+                names.push_back(e->d_name);
+        closedir(d);
+        for (const std::string &name : names) {
+            std::string path = directory + "/" + name;
+            struct stat st;
+            if (lstat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+                remove_tree(path);
+            else
+                std::remove(path.c_str());
+        }
+    }
     rmdir(directory.c_str());
 }
 
+/* The temporaries' names: short (".meshfix-PID-N.tmp", whatever the
+   target's name: a name of 255 bytes still has a temporary), with a
+   leading dot so that a later walk of the directory skips them, and a
+   number no other set of this process uses. */
+std::atomic<unsigned> temporary_count{0};
+
 } // namespace
+
+FileId file_id(const std::string &path)
+{
+    FileId id;
+    struct stat st;
+    char *resolved = nullptr;
+    if (stat(path.c_str(), &st) == 0 && (resolved = realpath(path.c_str(), nullptr)) != nullptr) {
+        id.path = resolved;
+        id.exists = true;
+        id.device = (unsigned long long)st.st_dev;
+        id.inode = (unsigned long long)st.st_ino;
+        std::free(resolved);
+        return id;
+    }
+    id.path = path_identity(path);
+    return id;
+}
+
+bool same_file(const FileId &a, const FileId &b)
+{
+    return a.path == b.path || (a.exists && b.exists && a.device == b.device && a.inode == b.inode);
+}
+
+void FileMap::add(const FileId &id, const std::string &name)
+{
+    by_path.emplace(id.path, name);
+    if (id.exists)
+        by_inode.emplace(std::make_pair(id.device, id.inode), name);
+}
+
+const std::string *FileMap::find(const FileId &id) const
+{
+    auto path = by_path.find(id.path);
+    if (path != by_path.end())
+        return &path->second;
+    auto inode = id.exists ? by_inode.find(std::make_pair(id.device, id.inode)) : by_inode.end();
+    return inode != by_inode.end() ? &inode->second : nullptr;
+}
 
 std::string path_identity(const std::string &path)
 {
@@ -299,22 +336,6 @@ void Ledger::remove_temporary(const std::string &directory)
     temporaries.erase(directory);
 }
 
-bool Ledger::claim(const std::vector<std::string> &files, const std::string &owner, std::string &error)
-{
-    std::vector<std::string> ids;
-    for (const std::string &f : files) {
-        ids.push_back(path_identity(f));
-        auto found = owners.find(ids.back());
-        if (found != owners.end() && found->second != owner) {
-            error = "cannot write '" + f + "': it was written for '" + found->second + "' in this run";
-            return false;
-        }
-    }
-    for (const std::string &id : ids)
-        owners.emplace(id, owner);
-    return true;
-}
-
 void Ledger::stop()
 {
     std::lock_guard<std::mutex> lock(mutex);
@@ -324,29 +345,158 @@ void Ledger::stop()
     temporaries.clear();
 }
 
-std::string OutputSet::reserve(const std::string &target, std::string &error)
+void OutputSet::add_read(const std::string &path)
 {
-    /* beside the target, so the final rename stays on one file system;
-       named with a leading dot, so a later walk of the directory skips it.
-       mkdir fails when the name is taken, so two runs (or two threads
-       with the same target) never share a temporary */
-    std::string stem = directory_of(target) + "/." + base_name(target) + ".meshfix-" + std::to_string((long)getpid());
-    for (int k = 0; k < 100; ++k) {
-        std::string directory = stem + "-" + std::to_string(k) + ".tmp";
-        if (mkdir(directory.c_str(), 0700) == 0) {
-            if (!ledger.add_temporary(directory)) {
-                rmdir(directory.c_str());
-                error = "cannot write '" + target + "': interrupted";
+    FileId id = file_id(path);
+    if (reads.find(id) != nullptr)
+        return;
+    reads.add(id, path);
+    read_list.push_back({id, path});
+    /* known to the run at once: another input's commit before this one's
+       must not replace it either */
+    std::lock_guard<std::mutex> lock(ledger.mutex);
+    ledger.read.add(id, owner);
+}
+
+/* One temporary directory per target directory: the renames stay on one
+   file system. mkdir fails when the name is taken, so two runs never
+   share one. */
+std::string OutputSet::temporary_directory(const std::string &directory, std::string &error)
+{
+    auto found = directories.find(directory);
+    if (found != directories.end())
+        return found->second;
+    std::string stem = directory + "/.meshfix-" + std::to_string((long)getpid()) + "-";
+    for (int tries = 0; tries < 100; ++tries) {
+        std::string temporary = stem + std::to_string(temporary_count++) + ".tmp";
+        if (mkdir(temporary.c_str(), 0700) == 0) {
+            if (!ledger.add_temporary(temporary)) {
+                rmdir(temporary.c_str());
+                error = "interrupted";
                 return "";
             }
-            items.push_back({target, directory});
-            return directory + "/" + base_name(target);
+            if (mkdir((temporary + "/new").c_str(), 0700) != 0 || mkdir((temporary + "/old").c_str(), 0700) != 0) {
+                error = "cannot make a temporary in '" + directory + "': " + std::strerror(errno);
+                remove_tree(temporary);
+                ledger.remove_temporary(temporary);
+                return "";
+            }
+            directories[directory] = temporary;
+            return temporary;
         }
         if (errno != EEXIST)
             break;
     }
-    error = "cannot write '" + target + "': " + std::strerror(errno);
+    error = "cannot make a temporary in '" + directory + "': " + std::strerror(errno);
     return "";
+}
+
+std::string OutputSet::reserve(const std::string &target, const std::string &replaces, std::string &error)
+{
+    Item item;
+    item.target = target;
+    /* an existing symbolic link is written through: the file it names is
+       replaced, the link kept */
+    char *resolved = realpath(target.c_str(), nullptr);
+    struct stat st;
+    bool link = lstat(target.c_str(), &st) == 0 && S_ISLNK(st.st_mode);
+    item.real = link && resolved != nullptr ? resolved : target;
+    std::free(resolved);
+    item.id = file_id(item.real);
+    const std::string *read = reads.find(item.id);
+    if (read != nullptr && (replaces.empty() || !same_file(item.id, file_id(replaces)))) {
+        error = "cannot write '" + target + "': it is '" + *read + "', which " + (*read == owner ? "is the input" : "'" + owner + "' reads") +
+                ": nothing written";
+        return "";
+    }
+    const std::string *other = planned.find(item.id);
+    if (other != nullptr) {
+        error = "'" + owner + "' would write '" + target + "' twice" + (*other == target ? "" : " (also as '" + *other + "')") +
+                ": nothing written";
+        return "";
+    }
+    if (!make_parent_directories(item.real, &made)) {
+        error = "cannot make the directory of '" + target + "': " + std::strerror(errno);
+        return "";
+    }
+    if (!check_target(item.real, error))
+        return "";
+    item.temporary = temporary_directory(directory_of(item.real), error);
+    if (item.temporary.empty())
+        return "";
+    planned.add(item.id, target);
+    items.push_back(item);
+    return item.temporary + "/new/" + base_name(item.real);
+}
+
+/* Whether another input of the run wrote or read a file of this set, or
+   wrote one it read (call with the ledger's lock held). */
+bool OutputSet::check_run(std::string &error) const
+{
+    for (const Item &item : items) {
+        const std::string *other = ledger.written.find(item.id);
+        if (other == nullptr || *other == owner)
+            other = ledger.read.find(item.id);
+        if (other != nullptr && *other != owner) {
+            error = "cannot write '" + item.target + "': '" + *other + "' " +
+                    (ledger.written.find(item.id) != nullptr ? "wrote it" : "reads it") + " in this run";
+            return false;
+        }
+    }
+    for (const auto &r : read_list) {
+        const std::string *other = ledger.written.find(r.first);
+        if (other != nullptr && *other != owner) {
+            error = "'" + r.second + "' was written for '" + *other + "' in this run: nothing written for '" + owner + "'";
+            return false;
+        }
+    }
+    return true;
+}
+
+/* Puts one output in place: the file it replaces is kept as a backup
+   first (a hard link, or, where the file system has none, the file moved
+   aside), so that the set can be put back. */
+bool OutputSet::move(Item &item, std::string &error)
+{
+    std::string temporary = item.temporary + "/new/" + base_name(item.real);
+    std::string backup = item.temporary + "/old/" + base_name(item.real);
+    struct stat st;
+    item.existed = lstat(item.real.c_str(), &st) == 0;
+    if (item.existed) {
+        chmod(temporary.c_str(), st.st_mode & 07777); /* a replaced file keeps its permissions */
+        if (link(item.real.c_str(), backup.c_str()) != 0 && std::rename(item.real.c_str(), backup.c_str()) != 0) {
+            error = "cannot write '" + item.target + "': " + std::strerror(errno);
+            return false;
+        }
+        item.backup = backup;
+    }
+    if (std::rename(temporary.c_str(), item.real.c_str()) != 0) {
+        error = "cannot write '" + item.target + "': " + std::strerror(errno);
+        if (item.existed && access(item.real.c_str(), F_OK) != 0)
+            std::rename(backup.c_str(), item.real.c_str()); /* moved aside above: back */
+        return false;
+    }
+    item.moved = true;
+    return true;
+}
+
+/* After a move failed: every output already moved is taken back, the file
+   it replaced put back in its place. */
+void OutputSet::restore(std::string &error)
+{
+    for (size_t i = items.size(); i-- > 0;) {
+        Item &item = items[i];
+        if (!item.moved)
+            continue;
+        bool back = item.existed ? std::rename(item.backup.c_str(), item.real.c_str()) == 0
+                                 : std::remove(item.real.c_str()) == 0;
+        if (!back) {
+            error += "; '" + item.target + "' could not be put back (" + std::strerror(errno) + ")" +
+                     (item.existed ? ": the old file is '" + item.backup + "'" : "");
+            directories.clear(); /* the backups stay */
+        }
+        item.moved = false;
+    }
 }
 
 bool OutputSet::commit(std::string &error)
@@ -359,49 +509,53 @@ bool OutputSet::commit(std::string &error)
         error = "interrupted";
         return false;
     }
-    std::vector<std::pair<std::string, std::string>> moves;
-    for (const Item &item : items) {
-        std::vector<std::string> files;
-        list_files(item.directory, "", files);
-        std::sort(files.begin(), files.end());
-        for (const std::string &f : files)
-            moves.push_back({item.directory + "/" + f, directory_of(item.target) + "/" + f});
-    }
-    std::vector<std::string> targets;
-    for (const auto &m : moves) {
-        if (!make_parent_directories(m.second)) {
-            error = "cannot write '" + m.second + "': " + std::strerror(errno);
-            return false;
-        }
-        targets.push_back(m.second);
-    }
-    if (!ledger.claim(targets, owner, error))
+    if (!check_run(error))
         return false;
-    for (const auto &m : moves) {
-        struct stat st;
-        if (stat(m.second.c_str(), &st) == 0 && S_ISREG(st.st_mode))
-            chmod(m.first.c_str(), st.st_mode & 07777); /* a replaced file keeps its permissions */
-        if (std::rename(m.first.c_str(), m.second.c_str()) != 0) {
-            error = "cannot write '" + m.second + "': " + std::strerror(errno);
+    for (Item &item : items)
+        if (!move(item, error)) {
+            restore(error);
             return false;
         }
-        written.push_back(m.second);
+    for (Item &item : items) {
+        ledger.written.add(item.id, owner);
+        written.push_back(item.target);
     }
-    for (const Item &item : items) {
-        remove_tree(item.directory);
-        ledger.temporaries.erase(item.directory);
+    for (const auto &d : directories) {
+        remove_tree(d.second);
+        ledger.temporaries.erase(d.second);
     }
+    directories.clear();
     items.clear();
+    made.clear();
     return true;
 }
 
 void OutputSet::discard()
 {
-    for (const Item &item : items) {
-        remove_tree(item.directory);
-        ledger.remove_temporary(item.directory);
+    for (const auto &d : directories) {
+        remove_tree(d.second);
+        ledger.remove_temporary(d.second);
     }
+    directories.clear();
     items.clear();
+    /* the directories made for nothing, deepest first (rmdir leaves one
+       that holds anything) */
+    for (size_t i = made.size(); i-- > 0;)
+        rmdir(made[i].c_str());
+    made.clear();
+}
+
+bool write_output(OutputSet &outputs, const std::string &target, const std::string &replaces, const std::string &bytes,
+                  std::string &error)
+{
+    std::string path = outputs.reserve(target, replaces, error);
+    return !path.empty() && write_bytes(path, bytes, error);
+}
+
+bool MeshFile::write_outputs(OutputSet &outputs, const std::string &input, const std::string &target, std::string &error)
+{
+    std::string path = outputs.reserve(target, input, error);
+    return !path.empty() && write(path, target, error);
 }
 
 /* ---- --mark, and other formats than the input's ---- */

@@ -10,15 +10,17 @@
    spec reverses their winding) and double-sided materials are reported,
    never changed. A file nothing changed in is written back byte for byte,
    its buffers and images copied beside it. Images are never decoded. */
-#include "meshfile.h"
+#include "json_edit.h"
 #include "text.h"
+#include "tool.h"
 
 #ifndef MESHFIX_TOOL_NO_GLTF
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 #endif
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -27,12 +29,6 @@
 #include <sys/stat.h>
 
 namespace tool {
-
-bool write_bytes(const std::string &path, const std::string &bytes, std::string &error);
-bool make_parent_directories(const std::string &file);
-bool read_file(const std::string &path, std::string &data, std::string &error);
-std::string directory_of(const std::string &path);
-std::string base_name(const std::string &path);
 
 #ifdef MESHFIX_TOOL_NO_GLTF
 /* The Makefile builds this when tinygltf or nlohmann json is not installed. */
@@ -73,12 +69,34 @@ public:
     void review(size_t unit, const Changes &changes) override;
     void apply(size_t unit, const Changes &changes) override;
     bool write(const std::string &path, const std::string &target, std::string &error) override;
+    bool write_outputs(OutputSet &outputs, const std::string &input, const std::string &target, std::string &error) override;
+    std::vector<std::string> files_read() const override;
     std::vector<std::string> notes() const override;
     std::string json_members() const override;
 
     tinygltf::Model model;
     std::string path, raw;
     bool binary = false;
+    /* the JSON as written (a .glb's first chunk), parsed for editing; false
+       when it does not match the model (a changed file is then refused) */
+    std::string text;
+    JsonValue document;
+    bool document_matches = false;
+    /* what the repair adds or changes, for the edits of the document */
+    size_t first_new_accessor = 0, first_new_view = 0;
+    std::vector<size_t> buffer_sizes;            /* as read */
+    std::vector<unsigned char> buffer_changed;
+    std::set<std::pair<int, int>> primitives_changed; /* (mesh, primitive) given new indices */
+    /* The file each external buffer and image was read from ("" for none:
+       a data URI, the GLB's chunk, a bufferView, an image not found), and
+       per buffer the first buffer read from the same file: their bytes are
+       one, edited together. */
+    std::vector<std::string> buffer_files, image_files;
+    std::vector<int> buffer_file_first;
+    /* per accessor: what uses it other than as NORMAL or TANGENT, or as the
+       indices of a primitive (a morph target, a skin, an animation, or
+       another attribute) */
+    std::vector<int> other_uses, normal_uses; /* normal_uses: as NORMAL or TANGENT */
     std::vector<std::vector<PrimitiveTriangles>> unit_primitives;
     std::vector<std::vector<NormalSlot>> unit_slots;
     std::vector<int> index_uses; /* per accessor: primitives that use it as indices */
@@ -293,6 +311,8 @@ std::string compression_of(const tinygltf::Model &m)
 
 /* ---- the units ---- */
 
+bool aliased(const GltfFile &f, int accessor);
+
 struct MeshReader {
     GltfFile &file;
     std::string &error;
@@ -411,25 +431,53 @@ struct MeshReader {
         const tinygltf::Accessor &a = file.model.accessors[(size_t)accessor];
         ElementView v;
         std::string ignored;
+        /* this mesh's alone: no other use of the accessor, nor of its bytes */
         return a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && components(a.type) == width && !a.sparse.isSparse &&
                a.bufferView >= 0 && attribute_meshes[accessor] == std::set<int>{mesh} &&
-               view_range(file.model, a.bufferView, a.byteOffset, a.count, 4 * (size_t)width, 0, v, ignored);
+               file.other_uses[(size_t)accessor] == 0 && file.index_uses[(size_t)accessor] == 0 &&
+               view_range(file.model, a.bufferView, a.byteOffset, a.count, 4 * (size_t)width, 0, v, ignored) &&
+               !aliased(file, accessor);
+    }
+
+    /* Every use of each accessor: as indices, as NORMAL or TANGENT (by
+       which meshes), and any other. */
+    void count_uses()
+    {
+        const tinygltf::Model &m = file.model;
+        file.index_uses.assign(m.accessors.size(), 0);
+        file.other_uses.assign(m.accessors.size(), 0);
+        file.normal_uses.assign(m.accessors.size(), 0);
+        auto other = [&](int a) {
+            if (a >= 0 && (size_t)a < m.accessors.size())
+                file.other_uses[(size_t)a]++;
+        };
+        for (size_t mesh = 0; mesh < m.meshes.size(); ++mesh)
+            for (const tinygltf::Primitive &p : m.meshes[mesh].primitives) {
+                if (p.indices >= 0 && (size_t)p.indices < m.accessors.size())
+                    file.index_uses[(size_t)p.indices]++;
+                for (const auto &a : p.attributes) {
+                    if ((a.first == "NORMAL" || a.first == "TANGENT") && a.second >= 0 && (size_t)a.second < m.accessors.size()) {
+                        attribute_meshes[a.second].insert((int)mesh);
+                        file.normal_uses[(size_t)a.second]++;
+                    } else {
+                        other(a.second);
+                    }
+                }
+                for (const auto &target : p.targets)
+                    for (const auto &a : target)
+                        other(a.second);
+            }
+        for (const tinygltf::Skin &skin : m.skins)
+            other(skin.inverseBindMatrices);
+        for (const tinygltf::Animation &animation : m.animations)
+            for (const tinygltf::AnimationSampler &sampler : animation.samplers)
+                other(sampler.input), other(sampler.output);
     }
 
     bool read()
     {
         tinygltf::Model &m = file.model;
-        file.index_uses.assign(m.accessors.size(), 0);
-        for (size_t mesh = 0; mesh < m.meshes.size(); ++mesh)
-            for (const tinygltf::Primitive &p : m.meshes[mesh].primitives) {
-                if (p.indices >= 0 && (size_t)p.indices < m.accessors.size())
-                    file.index_uses[(size_t)p.indices]++;
-                for (const char *name : {"NORMAL", "TANGENT"}) {
-                    auto a = p.attributes.find(name);
-                    if (a != p.attributes.end())
-                        attribute_meshes[a->second].insert((int)mesh);
-                }
-            }
+        count_uses();
         for (size_t mesh = 0; mesh < m.meshes.size(); ++mesh) {
             Unit u;
             std::map<int, uint32_t> bases;
@@ -520,28 +568,22 @@ std::string base64(const std::vector<unsigned char> &data)
     return out;
 }
 
-/* An image from a data URI goes back as one; external files keep their
-   uri (the tool copies them); bufferView images are written by tinygltf. */
-bool write_image_uri(const std::string *, const std::string *, const tinygltf::Image *image, bool, std::string *uri, void *)
-{
-    if (!image->uri.empty() || image->bufferView >= 0)
-        return false;
-    *uri = "data:" + (image->mimeType.empty() ? std::string("application/octet-stream") : image->mimeType) + ";base64," +
-           base64(image->image);
-    return true;
-}
-
 bool data_uri(const std::string &uri) { return uri.compare(0, 5, "data:") == 0; }
 
 /* ---- writing ---- */
 
+int shared_buffer(const GltfFile &f, int buffer);
+void share_bytes(GltfFile &f, int buffer);
+
 /* Puts `values` into the accessor's own bytes, in its component type. */
-void write_indices_in_place(tinygltf::Model &m, int accessor, const std::vector<uint32_t> &values)
+void write_indices_in_place(GltfFile &f, int accessor, const std::vector<uint32_t> &values)
 {
+    tinygltf::Model &m = f.model;
     const tinygltf::Accessor &a = m.accessors[(size_t)accessor];
     tinygltf::BufferView &v = m.bufferViews[(size_t)a.bufferView];
     size_t size = component_size(a.componentType), stride = v.byteStride != 0 ? v.byteStride : size;
-    unsigned char *base = m.buffers[(size_t)v.buffer].data.data() + v.byteOffset + a.byteOffset;
+    int buffer = shared_buffer(f, v.buffer);
+    unsigned char *base = m.buffers[(size_t)buffer].data.data() + v.byteOffset + a.byteOffset;
     for (size_t i = 0; i < values.size(); ++i) {
         uint32_t x = values[i];
         if (size == 1)
@@ -552,15 +594,22 @@ void write_indices_in_place(tinygltf::Model &m, int accessor, const std::vector<
         } else
             std::memcpy(base + i * stride, &x, 4);
     }
+    share_bytes(f, buffer);
 }
 
 /* A new index accessor (in its own bufferView at the end of buffer 0)
    holding `values`; returns its index. */
-int add_index_accessor(tinygltf::Model &m, const std::vector<uint32_t> &values, int component_type)
+int add_index_accessor(GltfFile &f, const std::vector<uint32_t> &values, int component_type)
 {
-    if (m.buffers.empty())
+    tinygltf::Model &m = f.model;
+    if (m.buffers.empty()) {
         m.buffers.emplace_back();
-    std::vector<unsigned char> &data = m.buffers[0].data;
+        f.buffer_changed.push_back(1);
+        f.buffer_file_first.push_back(0);
+        f.buffer_files.push_back("");
+    }
+    int buffer = shared_buffer(f, 0);
+    std::vector<unsigned char> &data = m.buffers[(size_t)buffer].data;
     while (data.size() % 4 != 0)
         data.push_back(0);
     size_t size = component_size(component_type), offset = data.size();
@@ -575,6 +624,7 @@ int add_index_accessor(tinygltf::Model &m, const std::vector<uint32_t> &values, 
         } else
             std::memcpy(&data[offset + 4 * i], &x, 4);
     }
+    share_bytes(f, buffer);
     tinygltf::BufferView view;
     view.buffer = 0;
     view.byteOffset = offset;
@@ -591,67 +641,150 @@ int add_index_accessor(tinygltf::Model &m, const std::vector<uint32_t> &values, 
     return (int)m.accessors.size() - 1;
 }
 
-/* The bytes [begin, end) of a buffer that an accessor's elements span. */
-struct ByteRange {
-    int buffer = -1;
-    size_t begin = 0, end = 0;
+/* The bytes an accessor's elements take in their buffer: `count` runs of
+   `size` bytes, `stride` apart, from `begin` (interleaved attributes share
+   a span and no byte). Buffers read from one file are one buffer here. */
+struct ByteRuns {
+    int buffer = -1; /* -1: none (no bufferView, or no elements) */
+    size_t begin = 0, size = 0, stride = 0, count = 0;
+    size_t end() const { return begin + (count - 1) * stride + size; }
 };
 
-ByteRange accessor_bytes(const tinygltf::Model &m, const tinygltf::Accessor &a)
+/* The size of an element as the spec lays it out: a matrix's columns each
+   start on 4 bytes (a MAT3 of bytes is 12 bytes, of shorts 24). */
+size_t element_size(const tinygltf::Accessor &a)
 {
-    ByteRange r;
-    if (a.bufferView < 0 || (size_t)a.bufferView >= m.bufferViews.size() || a.count == 0)
+    size_t c = component_size(a.componentType);
+    auto columns = [c](size_t n, size_t rows) { return n * ((rows * c + 3) / 4 * 4); };
+    switch (a.type) {
+    case TINYGLTF_TYPE_MAT2: return columns(2, 2);
+    case TINYGLTF_TYPE_MAT3: return columns(3, 3);
+    case TINYGLTF_TYPE_MAT4: return columns(4, 4);
+    default: return c * (size_t)std::max(components(a.type), 1);
+    }
+}
+
+int shared_buffer(const GltfFile &f, int buffer)
+{
+    return buffer >= 0 && (size_t)buffer < f.buffer_file_first.size() ? f.buffer_file_first[(size_t)buffer] : buffer;
+}
+
+ByteRuns contiguous(const GltfFile &f, int buffer, size_t begin, size_t length)
+{
+    ByteRuns r;
+    if (length == 0)
         return r;
-    const tinygltf::BufferView &v = m.bufferViews[(size_t)a.bufferView];
-    size_t size = component_size(a.componentType) * (size_t)std::max(components(a.type), 1);
-    size_t stride = v.byteStride != 0 ? v.byteStride : size;
-    r.buffer = v.buffer;
-    r.begin = v.byteOffset + a.byteOffset;
-    r.end = r.begin + (a.count - 1) * stride + size; /* within the buffer: view_range checked it */
+    r.buffer = shared_buffer(f, buffer);
+    r.begin = begin;
+    r.size = r.stride = length;
+    r.count = 1;
     return r;
 }
 
-bool overlap(const ByteRange &a, int buffer, size_t begin, size_t end)
+ByteRuns accessor_runs(const GltfFile &f, const tinygltf::Accessor &a)
 {
-    return a.buffer == buffer && a.buffer >= 0 && begin < a.end && a.begin < end;
+    const tinygltf::Model &m = f.model;
+    ByteRuns r;
+    if (a.bufferView < 0 || (size_t)a.bufferView >= m.bufferViews.size() || a.count == 0)
+        return r;
+    const tinygltf::BufferView &v = m.bufferViews[(size_t)a.bufferView];
+    ElementView e;
+    std::string ignored;
+    size_t size = element_size(a);
+    if (size == 0 || !view_range(m, a.bufferView, a.byteOffset, a.count, size, 0, e, ignored))
+        return contiguous(f, v.buffer, v.byteOffset, v.byteLength); /* not readable: its whole view, to be safe */
+    r.buffer = shared_buffer(f, v.buffer);
+    r.begin = v.byteOffset + a.byteOffset;
+    r.size = size;
+    r.stride = e.stride;
+    r.count = a.count;
+    return r;
 }
 
-/* Whether anything else in the file can see the bytes of this accessor:
-   another accessor over them (in its bufferView or another), or another
-   bufferView over them (an image, a sparse block, an extension's data).
-   Rewriting them in place would change that too. */
-bool aliased(const tinygltf::Model &m, int accessor)
+/* Whether two sets of runs share a byte: the runs walked in order from
+   where the spans meet (after a bounded walk, taken as yes). */
+bool runs_overlap(const ByteRuns &a, const ByteRuns &b)
 {
-    ByteRange mine = accessor_bytes(m, m.accessors[(size_t)accessor]);
-    if (mine.buffer < 0)
-        return true;
-    for (size_t i = 0; i < m.accessors.size(); ++i) {
-        ByteRange other = accessor_bytes(m, m.accessors[i]);
-        if ((int)i != accessor && overlap(mine, other.buffer, other.begin, other.end))
+    if (a.buffer < 0 || a.buffer != b.buffer || a.begin >= b.end() || b.begin >= a.end())
+        return false;
+    auto first_reaching = [](const ByteRuns &r, size_t from) -> size_t {
+        return from < r.begin + r.size ? 0 : (from - r.begin - r.size) / r.stride + 1;
+    };
+    size_t i = first_reaching(a, b.begin), j = first_reaching(b, a.begin);
+    for (size_t steps = 0; i < a.count && j < b.count; ++steps) {
+        size_t a0 = a.begin + i * a.stride, b0 = b.begin + j * b.stride;
+        if (a0 < b0 + b.size && b0 < a0 + a.size)
             return true;
-    }
-    int own = m.accessors[(size_t)accessor].bufferView;
-    for (size_t i = 0; i < m.bufferViews.size(); ++i) {
-        const tinygltf::BufferView &v = m.bufferViews[i];
-        if ((int)i != own && overlap(mine, v.buffer, v.byteOffset, v.byteOffset + v.byteLength))
+        if (steps > 4000000)
             return true;
+        if (a0 + a.size <= b0 + b.size)
+            ++i;
+        else
+            ++j;
     }
     return false;
 }
 
-void negate_floats(tinygltf::Model &m, int accessor, uint32_t element, int first, int count)
+/* Whether anything else in the file can see the bytes of this accessor:
+   another accessor over them (in its bufferView or another), another
+   bufferView over them (an image, an extension's data) or a sparse
+   block. Rewriting them in place would change that too. */
+bool aliased(const GltfFile &f, int accessor)
 {
+    const tinygltf::Model &m = f.model;
+    ByteRuns mine = accessor_runs(f, m.accessors[(size_t)accessor]);
+    if (mine.buffer < 0)
+        return true;
+    auto view_runs = [&](int view, size_t offset, size_t length) {
+        if (view < 0 || (size_t)view >= m.bufferViews.size())
+            return ByteRuns();
+        const tinygltf::BufferView &v = m.bufferViews[(size_t)view];
+        return contiguous(f, v.buffer, v.byteOffset + offset, length == 0 ? v.byteLength : length);
+    };
+    for (size_t i = 0; i < m.accessors.size(); ++i) {
+        const tinygltf::Accessor &a = m.accessors[i];
+        if ((int)i != accessor && runs_overlap(mine, accessor_runs(f, a)))
+            return true;
+        if (a.sparse.isSparse && (runs_overlap(mine, view_runs(a.sparse.indices.bufferView, 0, 0)) ||
+                                  runs_overlap(mine, view_runs(a.sparse.values.bufferView, 0, 0))))
+            return true;
+    }
+    int own = m.accessors[(size_t)accessor].bufferView;
+    for (size_t i = 0; i < m.bufferViews.size(); ++i)
+        if ((int)i != own && runs_overlap(mine, view_runs((int)i, 0, 0)))
+            return true;
+    return false;
+}
+
+/* After a buffer's bytes changed: every buffer read from the same file
+   gets them too (the file is written once, with every change). */
+void share_bytes(GltfFile &f, int buffer)
+{
+    int first = shared_buffer(f, buffer);
+    f.buffer_changed[(size_t)first] = 1;
+    for (size_t b = 0; b < f.model.buffers.size(); ++b)
+        if ((int)b != first && shared_buffer(f, (int)b) == first) {
+            f.model.buffers[b].data = f.model.buffers[(size_t)first].data;
+            f.buffer_changed[b] = 1;
+        }
+}
+
+void negate_floats(GltfFile &f, int accessor, uint32_t element, int first, int count)
+{
+    tinygltf::Model &m = f.model;
     const tinygltf::Accessor &a = m.accessors[(size_t)accessor];
     const tinygltf::BufferView &v = m.bufferViews[(size_t)a.bufferView];
     size_t size = 4 * (size_t)components(a.type), stride = v.byteStride != 0 ? v.byteStride : size;
-    unsigned char *p = m.buffers[(size_t)v.buffer].data.data() + v.byteOffset + a.byteOffset + element * stride;
+    int buffer = shared_buffer(f, v.buffer);
+    unsigned char *p = m.buffers[(size_t)buffer].data.data() + v.byteOffset + a.byteOffset + element * stride;
     for (int k = first; k < first + count; ++k) {
-        float f;
-        std::memcpy(&f, p + 4 * k, 4);
-        if (f != 0.0f) /* -0 would change bytes and nothing else */
-            f = -f;
-        std::memcpy(p + 4 * k, &f, 4);
+        float x;
+        std::memcpy(&x, p + 4 * k, 4);
+        if (x != 0.0f) /* -0 would change bytes and nothing else */
+            x = -x;
+        std::memcpy(p + 4 * k, &x, 4);
     }
+    share_bytes(f, buffer);
 }
 
 } // namespace
@@ -673,9 +806,9 @@ void GltfFile::apply(size_t unit, const Changes &changes)
         tinygltf::Primitive &p = model.meshes[(size_t)pt.mesh].primitives[(size_t)pt.primitive];
         int mode = primitive_mode(p);
         if (mode == TINYGLTF_MODE_TRIANGLES && p.indices >= 0 && index_uses[(size_t)p.indices] == 1 &&
-            !model.accessors[(size_t)p.indices].sparse.isSparse && model.accessors[(size_t)p.indices].bufferView >= 0 &&
-            !aliased(model, p.indices)) {
-            write_indices_in_place(model, p.indices, list);
+            other_uses[(size_t)p.indices] == 0 && normal_uses[(size_t)p.indices] == 0 && !model.accessors[(size_t)p.indices].sparse.isSparse &&
+            model.accessors[(size_t)p.indices].bufferView >= 0 && !aliased(*this, p.indices)) {
+            write_indices_in_place(*this, p.indices, list);
             continue;
         }
         uint32_t highest = 0;
@@ -689,18 +822,19 @@ void GltfFile::apply(size_t unit, const Changes &changes)
             ++indices_added;
         else
             ++accessors_cloned;
-        p.indices = add_index_accessor(model, list, type);
+        p.indices = add_index_accessor(*this, list, type);
         p.mode = TINYGLTF_MODE_TRIANGLES;
+        primitives_changed.insert({pt.mesh, pt.primitive});
     }
     for (size_t k = 0; k < units[unit].flat_normals.size(); ++k) {
         const NormalSlot &s = unit_slots[unit][units[unit].flat_normals[k].slot];
         if (changes.negate_flat[k]) {
-            negate_floats(model, s.normal, s.element, 0, 3);
+            negate_floats(*this, s.normal, s.element, 0, 3);
             ++normals_negated;
             changed = true;
         }
         if (changes.fix_normals && unit_negate_w[unit][k]) {
-            negate_floats(model, s.tangent, s.element, 3, 1);
+            negate_floats(*this, s.tangent, s.element, 3, 1);
             ++tangents_negated;
             changed = true;
         }
@@ -821,12 +955,27 @@ struct Companions {
         bool safe = companion_path(rel, decoded) && decoded == rel;
         if (safe && stat(path.c_str(), &st) != 0)
             return false; /* missing: tinygltf says so */
-        if (!safe || !S_ISREG(st.st_mode)) {
+        if (!safe || !S_ISREG(st.st_mode) || !inside(path)) {
             if (refused.empty())
-                refused = rel + (safe ? "', not a regular file" : "', outside its directory");
+                refused = rel + (!safe ? "', outside its directory" : !S_ISREG(st.st_mode) ? "', not a regular file"
+                                                                     : "', a symbolic link out of its directory");
             return false;
         }
         return true;
+    }
+    /* Whether the file, its symbolic links followed (its own, or a
+       directory's on the way), is inside the glTF's directory: a link
+       would otherwise copy any file it names beside the output. */
+    bool inside(const std::string &path) const
+    {
+        char *file = realpath(path.c_str(), nullptr), *directory = realpath(base.empty() ? "." : base.c_str(), nullptr);
+        std::string f = file ? file : "", d = directory ? directory : "";
+        std::free(file);
+        std::free(directory);
+        if (f.empty() || d.empty())
+            return false;
+        std::string prefix = d == "/" ? d : d + "/";
+        return f.compare(0, prefix.size(), prefix) == 0;
     }
 };
 
@@ -895,19 +1044,6 @@ void json_text(const std::string &raw, bool binary, const char **text, size_t *s
     *size = std::min<size_t>(length, raw.size() - 20);
 }
 
-/* The file a companion goes to beside the output: `relative` under the
-   output's directory, its directories made inside it. */
-bool write_companion(const std::string &out_dir, const std::string &relative, const std::vector<unsigned char> &bytes,
-                     std::string &error)
-{
-    std::string to = out_dir + "/" + relative;
-    if (!make_parent_directories(to)) {
-        error = "cannot make the directory of '" + to + "'";
-        return false;
-    }
-    return write_bytes(to, std::string(bytes.begin(), bytes.end()), error);
-}
-
 /* A GLB container of the JSON and the BIN chunk (spec: chunks padded to 4
    bytes, JSON with spaces, BIN with zeros). */
 std::string glb_bytes(const std::string &json, const std::vector<unsigned char> &bin, bool with_bin)
@@ -934,124 +1070,337 @@ std::string glb_bytes(const std::string &json, const std::vector<unsigned char> 
     return out;
 }
 
-/* tinygltf writes an object with nothing to say (a default material or
-   sampler, an empty scene: valid glTF) as null, which no reader, its own
-   included, takes back: such entries of the top-level arrays, and of the
-   arrays of objects inside them, become {} again. */
-void restore_empty_objects(nlohmann::json &document)
+/* A GLB with its JSON chunk replaced, the chunks after it as they were. */
+std::string with_json_chunk(const std::string &raw, const std::string &json)
 {
-    auto fix = [](nlohmann::json &array) {
-        if (array.is_array())
-            for (nlohmann::json &entry : array)
-                if (entry.is_null())
-                    entry = nlohmann::json::object();
-    };
-    if (!document.is_object())
-        return;
-    for (auto &member : document.items()) {
-        if (!member.value().is_array() || member.key() == "extensionsUsed" || member.key() == "extensionsRequired")
-            continue;
-        fix(member.value());
-        for (nlohmann::json &entry : member.value())
-            if (entry.is_object())
-                for (const char *inner : {"primitives", "channels", "samplers", "targets"})
-                    if (entry.contains(inner))
-                        fix(entry[inner]);
-    }
+    uint32_t length = (uint32_t)(unsigned char)raw[12] | (uint32_t)(unsigned char)raw[13] << 8 |
+                      (uint32_t)(unsigned char)raw[14] << 16 | (uint32_t)(unsigned char)raw[15] << 24;
+    std::string rest = 20 + (size_t)length <= raw.size() ? raw.substr(20 + (size_t)length) : "";
+    std::string j = json;
+    while (j.size() % 4 != 0)
+        j += ' ';
+    std::string out = raw.substr(0, 8);
+    uint32_t total = (uint32_t)(20 + j.size() + rest.size());
+    for (uint32_t v : {total, (uint32_t)j.size()})
+        for (int k = 0; k < 4; ++k)
+            out += (char)(v >> (8 * k) & 0xFF);
+    return out + raw.substr(16, 4) + j + rest;
 }
 
-bool same_directory(const std::string &a, const std::string &b)
+/* RFC 3986 leaves '+' in a URI as it is, but tinygltf decodes it as a
+   space (form encoding): each buffer and image URI with a '+' is given to
+   it as %2B, which it decodes back to '+'. */
+std::string literal_plus(const std::string &text, const JsonValue &root)
 {
-    struct stat sa, sb;
-    return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    JsonEdits edits(text);
+    for (const char *array : {"buffers", "images"}) {
+        const JsonValue *a = root.member(array);
+        for (size_t i = 0; a != nullptr && i < a->items.size(); ++i) {
+            const JsonValue *uri = a->items[i].member("uri");
+            if (uri == nullptr || uri->kind != '"' || uri->string.find('+') == std::string::npos ||
+                uri->string.compare(0, 5, "data:") == 0)
+                continue;
+            std::string escaped;
+            for (char c : uri->string)
+                escaped += c == '+' ? std::string("%2B") : std::string(1, c);
+            edits.set(a->items[i], "uri", json_quote(escaped));
+        }
+    }
+    return edits.result();
 }
+
+/* Whether entry i of the document's arrays is the model's i (tinygltf
+   refuses entries that are not objects, so they always are). */
+bool document_matches(const JsonValue &root, const tinygltf::Model &m)
+{
+    auto entries = [&](const JsonValue *array, size_t count) {
+        if (array == nullptr)
+            return count == 0;
+        if (array->kind != '[' || array->items.size() != count)
+            return false;
+        for (const JsonValue &item : array->items)
+            if (item.kind != '{')
+                return false;
+        return true;
+    };
+    if (root.kind != '{' || !entries(root.member("accessors"), m.accessors.size()) ||
+        !entries(root.member("bufferViews"), m.bufferViews.size()) || !entries(root.member("buffers"), m.buffers.size()) ||
+        !entries(root.member("meshes"), m.meshes.size()))
+        return false;
+    for (size_t i = 0; i < m.meshes.size(); ++i)
+        if (!entries(root.member("meshes")->items[i].member("primitives"), m.meshes[i].primitives.size()))
+            return false;
+    return true;
+}
+
+/* A file name as a URI: bytes other than letters, digits and -._~ as %XX. */
+std::string uri_of(const std::string &name)
+{
+    static const char digits[] = "0123456789ABCDEF";
+    std::string uri;
+    for (char ch : name) {
+        unsigned char c = (unsigned char)ch;
+        if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~')
+            uri += (char)c;
+        else
+            uri += '%', uri += digits[c >> 4], uri += digits[c & 15];
+    }
+    return uri;
+}
+
+/* The files of one glTF output, planned as outputs of the job's set: the
+   buffers and images beside it, then the document. */
+struct GltfWriter {
+    GltfFile &file;
+    OutputSet &outputs;
+    std::string input, target, out_dir, stem;
+    bool in_place, to_binary;
+    JsonEdits edits;
+    std::vector<unsigned char> bin;
+    bool with_bin = false;
+    std::vector<std::pair<FileId, const std::vector<unsigned char> *>> companions;
+
+    GltfWriter(GltfFile &f, OutputSet &o, const std::string &in, const std::string &out)
+        : file(f), outputs(o), input(in), target(out), out_dir(directory_of(out)),
+          stem(base_name(out).substr(0, base_name(out).rfind('.'))), in_place(same_file(file_id(out), file_id(in))),
+          to_binary(format_of(out) == "glb"), edits(f.text)
+    {
+    }
+
+    /* A file beside the output, once: another name for a file already
+       written is skipped when the bytes are the same (two buffers read
+       from one file), refused when they differ. */
+    bool put(const std::string &to, const std::string &replaces, const std::vector<unsigned char> &bytes, std::string &error)
+    {
+        FileId id = file_id(to);
+        for (const auto &c : companions)
+            if (same_file(c.first, id)) {
+                if (*c.second == bytes)
+                    return true;
+                error = "cannot write '" + to + "': two of its buffers or images name it, with different bytes: nothing written";
+                return false;
+            }
+        companions.push_back({id, &bytes});
+        return write_output(outputs, to, replaces, std::string(bytes.begin(), bytes.end()), error);
+    }
+
+    /* A new file name for a buffer beside the output: <stem>.bin,
+       <stem>1.bin, ...: the first that is no file the job reads or writes
+       (never one of the input's own files). */
+    std::string fresh_name() const
+    {
+        for (size_t k = 0;; ++k) {
+            std::string name = stem + (k != 0 ? std::to_string(k) : "") + ".bin", to = out_dir + "/" + name;
+            if (!outputs.was_read(to) && !outputs.is_planned(to))
+                return name;
+        }
+    }
+
+    /* Images are never changed: each goes beside the output as read,
+       unless it is there already (in place, or in the same directory). */
+    bool images(std::string &error)
+    {
+        for (const tinygltf::Image &image : file.model.images) {
+            std::string relative;
+            if (image.uri.empty() || data_uri(image.uri))
+                continue;
+            if (!companion_path(image.uri, relative)) {
+                error = file.path + ": image '" + image.uri + "' is not a file beside it: nothing written";
+                return false;
+            }
+            std::string to = out_dir + "/" + relative;
+            if (same_file(file_id(to), file_id(directory_of(file.path) + "/" + relative)))
+                continue;
+            if (image.image.empty()) {
+                error = file.path + ": image '" + image.uri + "' is missing beside it, so it cannot be copied beside '" +
+                        target + "': nothing written";
+                return false;
+            }
+            if (!put(to, "", image.image, error))
+                return false;
+        }
+        return true;
+    }
+
+    /* Buffer i's file, when it is one beside the output: written, unless
+       it is unchanged and there already; in place over its own file, else
+       under a new name when its own is a file the job reads. Fills the
+       changes to its entry (uri); with no changes (the document written
+       as it was) a new name is refused. */
+    bool external_buffer(size_t i, const std::string &uri, std::vector<std::pair<std::string, std::string>> *changes,
+                         std::string &error)
+    {
+        const std::vector<unsigned char> &data = file.model.buffers[i].data;
+        std::string relative, to, replaces;
+        if (!uri.empty()) {
+            if (!companion_path(uri, relative)) {
+                error = file.path + ": buffer '" + uri + "' is not a file beside it: nothing written";
+                return false;
+            }
+            to = out_dir + "/" + relative;
+            bool there = same_file(file_id(to), file_id(file.buffer_files[i]));
+            if (there && !file.buffer_changed[i])
+                return true;
+            if (there && in_place)
+                replaces = file.buffer_files[i];
+        }
+        if (to.empty() || (replaces.empty() && (outputs.was_read(to) || outputs.is_planned(to)))) {
+            if (changes == nullptr) {
+                error = "cannot write '" + to + "': it is a file the input reads: nothing written";
+                return false;
+            }
+            std::string name = fresh_name();
+            to = out_dir + "/" + name;
+            changes->push_back({"uri", json_quote(uri_of(name))});
+        }
+        return put(to, replaces, data, error);
+    }
+
+    /* Every buffer: the GLB's chunk, a data URI (written again when its
+       bytes changed) or a file; entries the repair added appended. */
+    bool buffers(std::string &error)
+    {
+        const JsonValue *array = file.document.member("buffers");
+        std::vector<std::string> added;
+        for (size_t i = 0; i < file.model.buffers.size(); ++i) {
+            const tinygltf::Buffer &b = file.model.buffers[i];
+            const JsonValue *entry = array != nullptr && i < array->items.size() ? &array->items[i] : nullptr;
+            const JsonValue *uri_value = entry != nullptr ? entry->member("uri") : nullptr;
+            std::string uri = uri_value != nullptr && uri_value->kind == '"' ? uri_value->string : "";
+            std::vector<std::pair<std::string, std::string>> changes;
+            if (entry == nullptr || b.data.size() != file.buffer_sizes[i])
+                changes.push_back({"byteLength", std::to_string(b.data.size())});
+            if (to_binary && i == 0 && !data_uri(uri)) {
+                bin = b.data; /* the first buffer is the GLB's BIN chunk */
+                with_bin = true;
+                if (uri_value != nullptr)
+                    changes.push_back({"uri", ""});
+            } else if (data_uri(uri)) {
+                size_t comma = uri.find(',');
+                bool base64_uri = comma != std::string::npos && comma >= 7 && uri.compare(comma - 7, 7, ";base64") == 0;
+                std::string prefix = base64_uri ? uri.substr(0, comma + 1) : "data:application/octet-stream;base64,";
+                if (file.buffer_changed[i])
+                    changes.push_back({"uri", json_quote(prefix + base64(b.data))});
+            } else if (!external_buffer(i, uri, &changes, error)) {
+                return false;
+            }
+            if (entry != nullptr && !changes.empty()) {
+                edits.update(*entry, changes);
+            } else if (entry == nullptr) {
+                std::string object;
+                for (const auto &c : changes)
+                    if (!c.second.empty())
+                        object += (object.empty() ? "" : ",") + json_quote(c.first) + ":" + c.second;
+                added.push_back("{" + object + "}");
+            }
+        }
+        add_entries("buffers", added);
+        return true;
+    }
+
+    void add_entries(const char *name, const std::vector<std::string> &entries)
+    {
+        if (entries.empty())
+            return;
+        const JsonValue *array = file.document.member(name);
+        if (array != nullptr) {
+            edits.append(*array, entries);
+            return;
+        }
+        std::string joined;
+        for (const std::string &e : entries)
+            joined += (joined.empty() ? "" : ",") + e;
+        edits.set(file.document, name, "[" + joined + "]");
+    }
+
+    /* The primitives given new indices, and the accessors and bufferViews
+       the repair added. */
+    void indices()
+    {
+        const tinygltf::Model &m = file.model;
+        for (const auto &mp : file.primitives_changed) {
+            const JsonValue &entry = file.document.member("meshes")->items[(size_t)mp.first].member("primitives")->items[(size_t)mp.second];
+            std::vector<std::pair<std::string, std::string>> changes = {
+                {"indices", std::to_string(m.meshes[(size_t)mp.first].primitives[(size_t)mp.second].indices)}};
+            if (entry.member("mode") != nullptr)
+                changes.push_back({"mode", "4"});
+            edits.update(entry, changes);
+        }
+        std::vector<std::string> accessors, views;
+        for (size_t i = file.first_new_accessor; i < m.accessors.size(); ++i) {
+            const tinygltf::Accessor &a = m.accessors[i];
+            accessors.push_back("{\"bufferView\":" + std::to_string(a.bufferView) + ",\"componentType\":" +
+                                std::to_string(a.componentType) + ",\"count\":" + std::to_string(a.count) + ",\"type\":\"SCALAR\"}");
+        }
+        for (size_t i = file.first_new_view; i < m.bufferViews.size(); ++i) {
+            const tinygltf::BufferView &v = m.bufferViews[i];
+            views.push_back("{\"buffer\":" + std::to_string(v.buffer) + ",\"byteOffset\":" + std::to_string(v.byteOffset) +
+                            ",\"byteLength\":" + std::to_string(v.byteLength) + ",\"target\":34963}");
+        }
+        add_entries("accessors", accessors);
+        add_entries("bufferViews", views);
+    }
+
+    /* The document as read, with the changes; GLB: no byte-order mark and
+       no padding of the old chunk. */
+    std::string document_bytes()
+    {
+        std::string json = edits.result();
+        if (json.compare(0, 3, "\xEF\xBB\xBF") == 0 && to_binary)
+            json.erase(0, 3);
+        if (file.binary)
+            while (!json.empty() && (json.back() == ' ' || json.back() == '\0'))
+                json.pop_back();
+        if (to_binary)
+            return glb_bytes(json, bin, with_bin);
+        return file.binary ? json + "\n" : json;
+    }
+
+    bool write(std::string &error)
+    {
+        if (!images(error))
+            return false;
+        if (!file.changed && to_binary == file.binary) {
+            for (size_t i = 0; i < file.model.buffers.size(); ++i) {
+                const std::string &uri = file.model.buffers[i].uri;
+                if (!uri.empty() && !data_uri(uri) && !external_buffer(i, uri, nullptr, error))
+                    return false;
+            }
+            return write_output(outputs, target, input, file.raw, error);
+        }
+        if (!file.document_matches) {
+            error = file.path + ": its JSON could not be read as tinygltf read it, so it cannot be edited: nothing written";
+            return false;
+        }
+        indices();
+        return buffers(error) && write_output(outputs, target, input, document_bytes(), error);
+    }
+};
 
 } // namespace
 
-bool GltfFile::write(const std::string &out, const std::string &target, std::string &error)
+bool GltfFile::write(const std::string &, const std::string &target, std::string &error)
 {
-    std::string out_dir = directory_of(out);
-    bool to_binary = target.size() >= 4 && (target.compare(target.size() - 4, 4, ".glb") == 0 ||
-                                            target.compare(target.size() - 4, 4, ".GLB") == 0);
-    /* images are never rewritten: their bytes, as read, go beside the output */
-    for (const tinygltf::Image &i : model.images) {
-        std::string relative;
-        if (i.uri.empty() || data_uri(i.uri))
-            continue;
-        if (!companion_path(i.uri, relative) || i.image.empty()) {
-            error = path + ": image '" + i.uri + "' could not be read beside it: not written";
-            return false;
-        }
-        if (!write_companion(out_dir, relative, i.image, error))
-            return false;
-    }
-    if (!changed && to_binary == binary) {
-        for (const tinygltf::Buffer &b : model.buffers) {
-            std::string relative;
-            if (!b.uri.empty() && !data_uri(b.uri) &&
-                (!companion_path(b.uri, relative) || !write_companion(out_dir, relative, b.data, error)))
-                return false;
-        }
-        return write_bytes(out, raw, error);
-    }
-    tinygltf::Model copy = model;
-    /* a new name beside the input: its changed buffers must not overwrite
-       the input's */
-    if (changed && same_directory(directory_of(path), directory_of(target)) && base_name(target) != base_name(path)) {
-        std::string stem = base_name(target).substr(0, base_name(target).rfind('.'));
-        for (size_t i = 0; i < copy.buffers.size(); ++i)
-            if (!copy.buffers[i].uri.empty() && !data_uri(copy.buffers[i].uri))
-                copy.buffers[i].uri = stem + (i ? std::to_string(i) : "") + ".bin";
-    }
-    if (to_binary && !copy.buffers.empty() && !data_uri(copy.buffers[0].uri))
-        copy.buffers[0].uri.clear(); /* the first buffer becomes the GLB's BIN chunk */
-    /* The document is serialized to memory with every buffer's bytes taken
-       out (written here, through the checked writer, then the URIs and
-       lengths put back), so tinygltf's unchecked file writers are never
-       used: a full disk fails the run instead of leaving a short file. */
-    std::vector<std::vector<unsigned char>> bytes(copy.buffers.size());
-    std::vector<unsigned char> bin;
-    bool with_bin = false;
-    for (size_t i = 0; i < copy.buffers.size(); ++i) {
-        tinygltf::Buffer &b = copy.buffers[i];
-        if (to_binary && i == 0 && b.uri.empty()) {
-            bin.swap(b.data);
-            with_bin = true;
-        } else if (!b.uri.empty() && !data_uri(b.uri)) {
-            std::string relative;
-            if (!companion_path(b.uri, relative)) {
-                error = path + ": buffer '" + b.uri + "' is not a file beside it: not written";
-                return false;
-            }
-            bytes[i].swap(b.data);
-            if (!write_companion(out_dir, relative, bytes[i], error))
-                return false;
-        }
-    }
-    tinygltf::TinyGLTF writer;
-    writer.SetImageWriter(write_image_uri, nullptr);
-    std::ostringstream stream;
-    if (!writer.WriteGltfSceneToStream(&copy, stream, !to_binary, false)) {
-        error = "cannot serialize '" + target + "'";
-        return false;
-    }
-    nlohmann::json document = nlohmann::json::parse(stream.str(), nullptr, false);
-    if (document.is_discarded() || (!copy.buffers.empty() && !document["buffers"].is_array())) {
-        error = "cannot serialize '" + target + "'";
-        return false;
-    }
-    restore_empty_objects(document);
-    for (size_t i = 0; i < copy.buffers.size(); ++i) {
-        nlohmann::json &b = document["buffers"][i];
-        if (with_bin && i == 0) {
-            b.erase("uri");
-            b["byteLength"] = bin.size();
-        } else if (!copy.buffers[i].uri.empty() && !data_uri(copy.buffers[i].uri)) {
-            b["uri"] = copy.buffers[i].uri;
-            b["byteLength"] = bytes[i].size();
-        }
-    }
-    return write_bytes(out, to_binary ? glb_bytes(document.dump(), bin, with_bin) : document.dump(2) + "\n", error);
+    error = "cannot write '" + target + "': a glTF is written with its buffers (write_outputs)";
+    return false;
+}
+
+bool GltfFile::write_outputs(OutputSet &outputs, const std::string &input, const std::string &target, std::string &error)
+{
+    GltfWriter writer(*this, outputs, input, target);
+    return writer.write(error);
+}
+
+std::vector<std::string> GltfFile::files_read() const
+{
+    std::vector<std::string> files;
+    for (const std::string &f : buffer_files)
+        if (!f.empty())
+            files.push_back(f);
+    for (const std::string &f : image_files)
+        if (!f.empty())
+            files.push_back(f);
+    return files;
 }
 
 std::vector<std::string> GltfFile::notes() const
@@ -1097,6 +1446,38 @@ std::string GltfFile::json_members() const
     return s;
 }
 
+namespace {
+
+/* What the writer needs to know of the file as read: the files of its
+   buffers and images, which buffers are one file, their sizes, and where
+   the accessors and bufferViews the repair adds begin. */
+void note_files(GltfFile &f, const std::string &base)
+{
+    const tinygltf::Model &m = f.model;
+    for (size_t i = 0; i < m.buffers.size(); ++i) {
+        std::string relative, uri = m.buffers[i].uri;
+        bool file = !uri.empty() && !data_uri(uri) && companion_path(uri, relative);
+        f.buffer_files.push_back(file ? base + "/" + relative : "");
+        f.buffer_sizes.push_back(m.buffers[i].data.size());
+        f.buffer_changed.push_back(0);
+        f.buffer_file_first.push_back((int)i);
+        for (size_t j = 0; file && j < i; ++j)
+            if (!f.buffer_files[j].empty() && same_file(file_id(f.buffer_files[j]), file_id(f.buffer_files[i]))) {
+                f.buffer_file_first[i] = f.buffer_file_first[j];
+                break;
+            }
+    }
+    for (const tinygltf::Image &image : m.images) {
+        std::string relative;
+        bool file = !image.uri.empty() && !data_uri(image.uri) && !image.image.empty() && companion_path(image.uri, relative);
+        f.image_files.push_back(file ? base + "/" + relative : "");
+    }
+    f.first_new_accessor = m.accessors.size();
+    f.first_new_view = m.bufferViews.size();
+}
+
+} // namespace
+
 std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error)
 {
     std::unique_ptr<GltfFile> file(new GltfFile);
@@ -1111,16 +1492,26 @@ std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error)
         error = "its JSON nests deeper than " + std::to_string(json_depth_limit) + " levels: refused";
         return nullptr;
     }
+    /* the document as written, for the edits; tinygltf reads it with each
+       '+' in a URI kept a '+' */
+    file->text.assign(json, json_size);
+    bool parsed = parse_json(file->text, file->document);
+    std::string loaded = file->raw;
+    if (parsed) {
+        std::string literal = literal_plus(file->text, file->document);
+        if (literal != file->text)
+            loaded = file->binary ? with_json_chunk(file->raw, literal) : literal;
+    }
     Companions companions;
     companions.base = directory_of(path);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keep_image_bytes, nullptr);
     loader.SetFsCallbacks({companion_exists, companion_expand, companion_read, companion_write, &companions});
     std::string err, warn;
-    bool ok = file->binary ? loader.LoadBinaryFromMemory(&file->model, &err, &warn, (const unsigned char *)file->raw.data(),
-                                                         (unsigned)file->raw.size(), companions.base)
-                           : loader.LoadASCIIFromString(&file->model, &err, &warn, file->raw.data(),
-                                                        (unsigned)file->raw.size(), companions.base);
+    bool ok = file->binary ? loader.LoadBinaryFromMemory(&file->model, &err, &warn, (const unsigned char *)loaded.data(),
+                                                         (unsigned)loaded.size(), companions.base)
+                           : loader.LoadASCIIFromString(&file->model, &err, &warn, loaded.data(),
+                                                        (unsigned)loaded.size(), companions.base);
     if (!companions.refused.empty()) {
         error = "refers to '" + companions.refused + ": refused";
         return nullptr;
@@ -1165,6 +1556,8 @@ std::unique_ptr<MeshFile> load_gltf(const std::string &path, std::string &error)
         error = compression_message(compression);
         return nullptr;
     }
+    file->document_matches = parsed && document_matches(file->document, file->model);
+    note_files(*file, companions.base);
     MeshReader reader{*file, error, {}};
     if (!reader.read())
         return nullptr;

@@ -30,28 +30,33 @@ bool write_mark_picture(const std::string &path, const Job &job, const Settings 
     return write_picture(path, *job.file, job.results, up, text, error);
 }
 
-bool write_outputs(Job &job, const Settings &settings, Ledger &ledger)
+/* The output in the input's format (every file it names), or in another
+   (positions and faces only). */
+bool write_output_file(Job &job, OutputSet &outputs, std::string &error)
 {
-    OutputSet outputs(ledger, job.input);
-    std::string error, in = job.file->format(), out = job.output.empty() ? "" : format_of(job.output);
-    bool ok = true;
-    if (!job.output.empty()) {
-        std::string path = make_parent_directories(job.output) ? outputs.reserve(job.output, error) : "";
-        if (path.empty() && error.empty())
-            error = "cannot make the directory of '" + job.output + "': " + std::strerror(errno);
-        bool same = in == out || (is_gltf_format(in) && is_gltf_format(out));
-        ok = !path.empty() && (same ? job.file->write(path, job.output, error)
-                                    : write_triangles(path, *job.file, job.results, false, error));
-    }
-    if (ok && !job.mark.empty()) {
-        std::string path = make_parent_directories(job.mark) ? outputs.reserve(job.mark, error) : "";
-        if (path.empty() && error.empty())
-            error = "cannot make the directory of '" + job.mark + "': " + std::strerror(errno);
-        ok = !path.empty() && (mark_format_of(job.mark) == "png" ? write_mark_picture(path, job, settings, error)
-                                                                 : write_triangles(path, *job.file, job.results, true, error));
-    }
-    if (ok)
-        ok = outputs.commit(error);
+    std::string in = job.file->format(), out = format_of(job.output);
+    if (in == out || (is_gltf_format(in) && is_gltf_format(out)))
+        return job.file->write_outputs(outputs, job.input, job.output, error);
+    std::string path = outputs.reserve(job.output, "", error);
+    return !path.empty() && write_triangles(path, *job.file, job.results, false, error);
+}
+
+bool write_mark(const Job &job, const Settings &settings, OutputSet &outputs, std::string &error)
+{
+    std::string path = outputs.reserve(job.mark, "", error);
+    if (path.empty())
+        return false;
+    return mark_format_of(job.mark) == "png" ? write_mark_picture(path, job, settings, error)
+                                             : write_triangles(path, *job.file, job.results, true, error);
+}
+
+/* Every output planned and written to its temporary, then all moved into
+   place, or none. */
+bool write_outputs(Job &job, const Settings &settings, OutputSet &outputs)
+{
+    std::string error;
+    bool ok = (job.output.empty() || write_output_file(job, outputs, error)) &&
+              (job.mark.empty() || write_mark(job, settings, outputs, error)) && outputs.commit(error);
     job.written = outputs.written;
     if (!ok) {
         job.exit = 1;
@@ -69,6 +74,10 @@ void run_job_steps(Job &job, const Settings &s, Ledger &ledger)
         job.exit = 1;
         return;
     }
+    OutputSet outputs(ledger, job.input);
+    outputs.add_read(job.input);
+    for (const std::string &f : job.file->files_read())
+        outputs.add_read(f);
     for (size_t i = 0; i < job.file->units.size(); ++i) {
         job.results.push_back(repair_unit(job.file->units[i], s));
         const UnitResult &r = job.results.back();
@@ -85,7 +94,7 @@ void run_job_steps(Job &job, const Settings &s, Ledger &ledger)
         if (!s.inspect)
             job.file->apply(i, job.results[i].changes);
     }
-    if (!write_outputs(job, s, ledger))
+    if (!write_outputs(job, s, outputs))
         return;
     if (s.check && something_wrong(job))
         job.exit = 3;

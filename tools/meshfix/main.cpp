@@ -20,6 +20,7 @@
 #include <map>
 #include <mutex>
 #include <pthread.h>
+#include <set>
 #include <sys/stat.h>
 #include <thread>
 #include <unistd.h>
@@ -196,9 +197,31 @@ int parse(int argc, char **argv, CommandLine &c)
 
 /* ---- the jobs ---- */
 
-/* Mesh files under a directory, sorted, recursively. */
-void collect(const std::string &directory, const std::string &relative, std::vector<std::pair<std::string, std::string>> &out)
+/* Whether `path`, symbolic links followed, is inside the directory
+   `root` (itself resolved). */
+bool inside(const std::string &path, const std::string &root)
 {
+    char *p = realpath(path.c_str(), nullptr), *r = realpath(root.c_str(), nullptr);
+    std::string file = p != nullptr ? p : "", directory = r != nullptr ? r : "";
+    std::free(p);
+    std::free(r);
+    std::string prefix = directory == "/" ? directory : directory + "/";
+    return !file.empty() && !directory.empty() && file.compare(0, prefix.size(), prefix) == 0;
+}
+
+/* A directory's device and inode: the walk enters each once. */
+using DirectoryId = std::pair<unsigned long long, unsigned long long>;
+
+/* Mesh files under a directory, sorted, recursively. Each directory is
+   walked once (a symbolic link back up, or two links to one directory,
+   add nothing), and a symbolic link that leads out of the directory
+   given is not followed: the walk stays inside what was named. */
+void collect(const std::string &directory, const std::string &relative, const std::string &root,
+             std::set<DirectoryId> &walked, std::vector<std::pair<std::string, std::string>> &out)
+{
+    struct stat st;
+    if (stat(directory.c_str(), &st) != 0 || !walked.insert({(unsigned long long)st.st_dev, (unsigned long long)st.st_ino}).second)
+        return;
     DIR *d = opendir(directory.c_str());
     if (d == nullptr)
         return;
@@ -210,13 +233,17 @@ void collect(const std::string &directory, const std::string &relative, std::vec
     std::sort(names.begin(), names.end());
     for (const std::string &name : names) {
         std::string path = directory + "/" + name;
+        struct stat link;
+        if (lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode) && !inside(path, root)) {
+            std::fprintf(stderr, "meshfix: '%s' is a symbolic link out of '%s': skipped\n", path.c_str(), root.c_str());
+            continue;
+        }
         if (is_directory(path))
-            collect(path, relative + name + "/", out);
+            collect(path, relative + name + "/", root, walked, out);
         else if (!format_of(name).empty())
             out.push_back({path, relative + name});
     }
 }
-
 
 /* A job per input file (directories walked), named for the output and
    --mark directories when there are several; false after a one-line
@@ -229,7 +256,8 @@ bool expand_inputs(const CommandLine &c, std::vector<Job> &jobs)
         if (is_directory(input)) {
             if (!batch && !c.settings.inspect)
                 return fail_usage("'" + input + "' is a directory: repair it into another with -o DIRECTORY") , false;
-            collect(input, "", files);
+            std::set<DirectoryId> walked;
+            collect(input, "", input, walked, files);
             if (files.empty())
                 return fail_usage("'" + input + "' is a directory with no mesh files in it"), false;
         } else {
@@ -252,28 +280,41 @@ bool expand_inputs(const CommandLine &c, std::vector<Job> &jobs)
     return true;
 }
 
-/* Two inputs whose outputs (or --mark files) would be one file, or an
-   output that is another input, are refused before anything is read: one
-   repair would be lost, or read half written. */
+/* Two inputs whose outputs (or --mark files) would be one file, an output
+   that is another input, a --mark file that is any input or the job's own
+   output, are refused before anything is read: one repair would be lost,
+   or read half written, or an input replaced by the mark. (What a glTF
+   reads besides itself is checked once it is read: OutputSet.) */
 bool check_collisions(const std::vector<Job> &jobs)
 {
-    std::map<std::string, size_t> inputs, outputs;
+    FileMap inputs, outputs; /* -> the job's number */
     for (size_t i = 0; i < jobs.size(); ++i)
-        inputs.emplace(path_identity(jobs[i].input), i);
+        if (inputs.find(file_id(jobs[i].input)) == nullptr)
+            inputs.add(file_id(jobs[i].input), std::to_string(i));
     for (size_t i = 0; i < jobs.size(); ++i)
         for (const std::string *target : {&jobs[i].output, &jobs[i].mark}) {
             if (target->empty())
                 continue;
-            std::string id = path_identity(*target);
-            auto taken = outputs.emplace(id, i);
-            if (!taken.second && taken.first->second != i)
-                return fail_usage("'" + jobs[taken.first->second].input + "' and '" + jobs[i].input +
-                                  "' would both be written to '" + *target +
-                                  "': repair them in separate runs or into separate directories"),
+            bool mark = target == &jobs[i].mark;
+            FileId id = file_id(*target);
+            const std::string *taken = outputs.find(id);
+            size_t other = taken != nullptr ? std::stoul(*taken) : i;
+            if (taken == nullptr)
+                outputs.add(id, std::to_string(i));
+            else
+                return fail_usage(other == i
+                                      ? "'" + *target + "' is both the output and the --mark file of '" + jobs[i].input +
+                                            "': give them different names"
+                                      : "'" + jobs[other].input + "' and '" + jobs[i].input +
+                                            "' would both be written to '" + *target +
+                                            "': repair them in separate runs or into separate directories"),
                        false;
-            auto input = inputs.find(id);
-            if (input != inputs.end() && input->second != i)
-                return fail_usage("'" + *target + "', the output for '" + jobs[i].input + "', is also an input"),
+            const std::string *input = inputs.find(id);
+            /* a job's own input is its output in place; never its mark */
+            bool own = input != nullptr && same_file(file_id(jobs[i].input), id);
+            if (input != nullptr && (mark || !own))
+                return fail_usage("'" + *target + "', the " + (mark ? "--mark file" : "output") + " for '" + jobs[i].input +
+                                  "', is " + (own ? "that input" : "also an input")),
                        false;
         }
     return true;
@@ -534,5 +575,12 @@ int main(int argc, char **argv)
         std::printf("],\"exit\":%d}\n", status);
     else if (!s.quiet && batch)
         print_table(jobs, s);
+    /* a report that could not be written (a full disk, a closed pipe) is
+       a failure: the caller would read a short or empty report as the
+       answer */
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        std::fprintf(stderr, "meshfix: cannot write the report to stdout: %s\n", std::strerror(errno != 0 ? errno : EIO));
+        return 1;
+    }
     return status;
 }

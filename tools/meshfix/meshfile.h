@@ -19,6 +19,8 @@
 
 namespace tool {
 
+class OutputSet;
+
 /* A normal the file stores for faces that all lie in one plane (flat
    shading: one face, or the two triangles of a quad): after the repair it
    must point the way its face does. */
@@ -70,6 +72,13 @@ public:
        format); `target` is the final name, for formats that write files
        beside it (glTF buffers and images go to the directory of `path`). */
     virtual bool write(const std::string &path, const std::string &target, std::string &error) = 0;
+    /* Plans and writes every file of the output as outputs of the set: by
+       default the one file (write to a temporary of `target`, which
+       replaces `input` when it is the same file); glTF names its buffers
+       and images too. */
+    virtual bool write_outputs(OutputSet &outputs, const std::string &input, const std::string &target, std::string &error);
+    /* The files read besides the input (glTF buffers and images). */
+    virtual std::vector<std::string> files_read() const { return {}; }
     /* Lines for the report that only this format has (glTF: mirrored
        nodes, double-sided materials), and the same as JSON members. */
     virtual std::vector<std::string> notes() const { return {}; }

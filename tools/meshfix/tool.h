@@ -64,8 +64,9 @@ bool read_file(const std::string &path, std::string &data, std::string &error);
 /* Writes the file whole and syncs it; false and an error on any failure
    (a full disk included). */
 bool write_bytes(const std::string &path, const std::string &bytes, std::string &error);
-/* mkdir -p of the directories a file goes into; false when one cannot be made. */
-bool make_parent_directories(const std::string &file);
+/* mkdir -p of the directories a file goes into; false when one cannot be
+   made. Those it made are added to `made` (parents first), when given. */
+bool make_parent_directories(const std::string &file, std::vector<std::string> *made = nullptr);
 /* Whether `target` can be written: its directory exists and it is not a
    directory, FIFO or read-only file. */
 bool check_target(const std::string &target, std::string &error);
@@ -83,51 +84,102 @@ std::string path_identity(const std::string &path);
 /* Loads any supported file (the format from the extension). */
 std::unique_ptr<MeshFile> load_file(const std::string &path, std::string &error);
 
-/* What one run of the tool writes: the temporary directories in use
-   (removed when the run is interrupted) and every file moved into place,
-   so that two inputs of a batch never write the same file. */
+/* What a file is, for telling whether a file written is one read: its
+   resolved path, and where it exists its device and inode (a hard link or
+   a symbolic link to it is the same file). */
+struct FileId {
+    std::string path;
+    bool exists = false;
+    unsigned long long device = 0, inode = 0;
+};
+FileId file_id(const std::string &path);
+bool same_file(const FileId &a, const FileId &b);
+
+/* Files by FileId, each with a name (the input it was read or written
+   for, or the path it was given as). */
+class FileMap {
+public:
+    void add(const FileId &id, const std::string &name);
+    /* the name of the file `id` is, or nullptr */
+    const std::string *find(const FileId &id) const;
+
+private:
+    std::map<std::string, std::string> by_path;
+    std::map<std::pair<unsigned long long, unsigned long long>, std::string> by_inode;
+};
+
+/* What one run of the tool reads and writes: the temporary directories in
+   use (removed when the run is interrupted), every file moved into place
+   and every file read, so that no input of a batch writes a file that
+   another writes or reads. */
 class Ledger {
 public:
     /* false once the run is stopping: the caller makes no temporary */
     bool add_temporary(const std::string &directory);
     void remove_temporary(const std::string &directory);
-    /* Removes every temporary; from now on nothing is reserved or committed. */
+    /* Removes every temporary; from now on nothing is committed. */
     void stop();
 
 private:
     friend class OutputSet;
-    /* Claims the files for `owner` (call with `mutex` held); false and an
-       error naming the first file another owner wrote. */
-    bool claim(const std::vector<std::string> &files, const std::string &owner, std::string &error);
     std::mutex mutex;
     bool stopped = false;
     std::set<std::string> temporaries;
-    std::map<std::string, std::string> owners; /* resolved path -> the input it was written for */
+    FileMap written, read; /* -> the input they were written or read for */
 };
 
-/* Outputs written all or nothing: each target is written into a new
-   temporary directory beside it, and only when every output of the set
-   was written are the files moved into place. */
+/* Every file one input writes (its output, a glTF's buffers and images, an
+   OBJ's materials, the --mark file), named before anything is written and
+   checked against every file the input's job read and every other file it
+   writes, in this job and the run; each written to a temporary beside its
+   target, and all moved into place together or none (a move that fails
+   puts back the files already replaced). */
 class OutputSet {
 public:
     OutputSet(Ledger &run, const std::string &input) : ledger(run), owner(input) {}
     ~OutputSet() { discard(); }
-    /* The path to write the target's contents to (inside the temporary
-       directory, under the target's own name); "" and an error when the
-       temporary cannot be made. */
-    std::string reserve(const std::string &target, std::string &error);
+    /* A file the job read: no output may be it, but the one that replaces
+       it (in place). */
+    void add_read(const std::string &path);
+    bool was_read(const std::string &path) const { return reads.find(file_id(path)) != nullptr; }
+    /* Whether a file is already one of the outputs. */
+    bool is_planned(const std::string &path) const { return planned.find(file_id(path)) != nullptr; }
+    /* The path to write the target's contents to (a temporary under the
+       target's own name), after checking the target: a regular file or
+       none, writable, not a file read (but `replaces`, the file read it is
+       the new version of, "" for none) nor another output. "" and an
+       error when refused or when the temporary cannot be made. */
+    std::string reserve(const std::string &target, const std::string &replaces, std::string &error);
+    /* Moves every output into place, or none. */
     bool commit(std::string &error);
     void discard();
     std::vector<std::string> written; /* after commit: every file moved into place */
 
 private:
     struct Item {
-        std::string target, directory;
+        std::string target;    /* as named */
+        std::string real;      /* where it goes: an existing symbolic link resolved */
+        FileId id;
+        std::string temporary; /* the temporary directory it is written in */
+        std::string backup;    /* the file it replaced, kept until the commit ends */
+        bool existed = false, moved = false;
     };
+    std::string temporary_directory(const std::string &directory, std::string &error);
+    bool check_run(std::string &error) const;
+    bool move(Item &item, std::string &error);
+    void restore(std::string &error);
     Ledger &ledger;
     std::string owner;
     std::vector<Item> items;
+    std::map<std::string, std::string> directories; /* target directory -> its temporary */
+    std::vector<std::string> made;                  /* directories made for the outputs */
+    FileMap reads, planned;
+    std::vector<std::pair<FileId, std::string>> read_list; /* what reads holds, for the ledger */
 };
+
+/* Writes `bytes` as an output of the set (reserve, then write_bytes). */
+bool write_output(OutputSet &outputs, const std::string &target, const std::string &replaces, const std::string &bytes,
+                  std::string &error);
 
 /* Writes every unit's triangles, as repaired, in the format `path` names
    (OBJ, OFF, STL or PLY; polygons as fans). colours (PLY, --mark): flipped
