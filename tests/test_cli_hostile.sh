@@ -5,9 +5,14 @@
 # the input is replaced, index bytes shared between meshes, JSON nested to
 # crash a recursive parser, FIFOs and the current directory as companions,
 # batch outputs that collide, ASCII STL read two ways, OBJ line
-# continuations, paths that are not UTF-8 in --json, interrupted runs.
+# continuations, paths that are not UTF-8 in --json, interrupted runs;
+# round 4: outputs named over the input's own files (glTF buffers, --mark),
+# a glTF document tinygltf's model does not keep, normal and matrix bytes
+# shared, two buffers of one file, walks through looping links, companions
+# that are links out, a 255-byte name, a move into place that fails.
 # The glTF files come from tests/cli/hostile_gltf.py; a disk that fails is
-# tests/cli/failing_io.c (LD_PRELOAD), and, as root, a small tmpfs.
+# tests/cli/failing_io.c (LD_PRELOAD: writes, fsync and rename that fail),
+# and, as root, a small tmpfs.
 # Run from the repository root after `make build/meshfix build/demo_mesh`.
 # Prints "ok NAME", "FAIL NAME" or "SKIP NAME (why)", then "N passed, N failed".
 set -u
@@ -358,6 +363,256 @@ no_stray_directory() {
     [ "$(ls -A "$d")" = "$(printf 'new\nout')" ] || { ls -A "$d"; return 1; }
 }
 check "meshfix in.obj out/x/y/o.obj makes no directory 'o' (nor any other) in the current one" no_stray_directory
+
+# ---- 13. round 4: what the writer names, checks and commits ----
+
+R4=$tmp/g/r4
+# the files of a case directory, copied fresh into $tmp/r4/NAME
+fresh() { # case
+    rm -rf "$tmp/r4/$1" && mkdir -p "$tmp/r4" && cp -r "$R4/$1" "$tmp/r4/$1" && mkdir -p "$tmp/r4/$1/out" "$tmp/r4/$1/back"
+}
+# files of the case, byte for byte as generated
+inputs_kept() { # case file...
+    local c=$1 f
+    shift
+    for f in "$@"; do cmp "$R4/$c/$f" "$tmp/r4/$c/$f" || return 1; done
+}
+repaired() { # file: a second look finds nothing to flip
+    $MESHFIX --inspect "$1" >"$tmp/again.txt" 2>&1 && grep -q 'clean: nothing to flip' "$tmp/again.txt" ||
+        { cat "$tmp/again.txt"; return 1; }
+}
+
+new_name_beside() {
+    fresh names
+    $MESHFIX --quiet "$tmp/r4/names/in.gltf" "$tmp/r4/names/out.gltf" || return 1
+    inputs_kept names in.gltf in.bin out.bin && repaired "$tmp/r4/names/out.gltf" && no_temporaries "$tmp/r4/names"
+}
+check "in.gltf -> out.gltf beside it, in.gltf's buffers in.bin and out.bin: every input kept, out.gltf repaired" new_name_beside
+glb_beside() {
+    fresh glb
+    $MESHFIX --quiet "$tmp/r4/glb/m.gltf" "$tmp/r4/glb/m.glb" || return 1
+    inputs_kept glb m.gltf m1.bin m.bin && repaired "$tmp/r4/glb/m.glb" &&
+        $MESHFIX --inspect "$tmp/r4/glb/m.gltf" | grep -q 'would flip 1 triangle'
+}
+check "m.gltf -> m.glb beside it, buffers m1.bin and m.bin: both kept, m.gltf still loads as it was" glb_beside
+
+mark_is_input() {
+    local d="$tmp/r4/mark"
+    rm -rf "$d" && mkdir -p "$d"
+    $MESHFIX --quiet "$tmp/demo.obj" "$d/in.ply" && cp "$d/in.ply" "$d/kept.ply" || return 1
+    one_line_error 1 "is that input" $MESHFIX --inspect --mark "$d/in.ply" "$d/in.ply" || return 1
+    cmp "$d/in.ply" "$d/kept.ply" || return 1
+    one_line_error 1 "both the output and the --mark" $MESHFIX "$d/in.ply" "$d/out.ply" --mark "$d/out.ply" || return 1
+    [ ! -e "$d/out.ply" ] || { echo "out.ply written"; return 1; }
+    ln "$d/in.ply" "$d/hard.ply"
+    one_line_error 1 "is that input" $MESHFIX --inspect --mark "$d/hard.ply" "$d/in.ply" || return 1
+    cmp "$d/in.ply" "$d/kept.ply"
+}
+check "--mark naming the input (also by a hard link) or the output: refused before anything is written" mark_is_input
+mark_is_texture() {
+    fresh texture
+    local d="$tmp/r4/texture"
+    mkdir -p "$d/out"
+    one_line_error 1 "tex.png" $MESHFIX "$d/scene.gltf" "$d/out/scene.gltf" --mark "$d/tex.png" || return 1
+    inputs_kept texture scene.gltf scene.bin tex.png || return 1
+    [ -z "$(ls -A "$d/out")" ] || { ls -A "$d/out"; return 1; }
+    one_line_error 1 "tex.png" $MESHFIX --inspect --mark "$d/tex.png" "$d/scene.gltf" || return 1
+    inputs_kept texture tex.png && no_temporaries "$d"
+}
+if $MESHFIX --version | grep -q 'PNG marks'; then
+    check "--mark tex.png, the glTF's own texture: refused, the texture kept, nothing written" mark_is_texture
+else
+    skip "--mark tex.png, the glTF's own texture: this meshfix has no PNG support"
+fi
+
+walk_loops() {
+    local d="$tmp/r4/walk"
+    rm -rf "$d" && mkdir -p "$d/in/sub"
+    cp "$tmp/demo.obj" "$d/in/sub/a.obj"
+    ln -s . "$d/in/loop" && ln -s .. "$d/in/sub/up" && ln -s sub "$d/in/again" && ln -s / "$d/in/root"
+    timeout 20 $MESHFIX --quiet "$d/in" -o "$d/out" 2>"$tmp/err.txt" || { cat "$tmp/err.txt"; return 1; }
+    [ "$(find "$d/out" -type f | wc -l)" -eq 1 ] || { find "$d/out" | head; return 1; }
+    grep -q "root' is a symbolic link out of" "$tmp/err.txt"
+}
+check "a batch walk over links back up, to a sibling and to /: each directory once, nothing outside" walk_loops
+
+document_equal() {
+    fresh document
+    local d="$tmp/r4/document"
+    $MESHFIX --quiet "$d/scene.gltf" "$d/out/scene.gltf" || return 1
+    repaired "$d/out/scene.gltf" || return 1
+    # equal as a document but for the new indices (accessors, bufferViews,
+    # the buffer's length); numbers compared as written
+    /usr/bin/python3 -c '
+import json, sys
+num = lambda s: ("number", s)
+a, b = [json.load(open(p), parse_int=num, parse_float=num, parse_constant=num) for p in sys.argv[1:]]
+na, nv = len(a["accessors"]), len(a["bufferViews"])
+assert len(b["accessors"]) == na + 2 and b["accessors"][:na] == a["accessors"], "accessors"
+assert len(b["bufferViews"]) == nv + 2 and b["bufferViews"][:nv] == a["bufferViews"], "bufferViews"
+for doc in (a, b):
+    for m in doc["meshes"]:
+        for p in m["primitives"]:
+            p.pop("indices")
+    del doc["buffers"][0]["byteLength"], doc["accessors"], doc["bufferViews"]
+for k in set(a) | set(b):
+    if a.get(k) != b.get(k):
+        print("differs:", k, a.get(k), b.get(k))
+        sys.exit(1)' "$d/scene.gltf" "$d/out/scene.gltf"
+}
+check "a changed glTF is its input as a document (zfar absent, nulls, [] {}, 2^53+1, -0, 1E2, names, unknown members) but the new indices" document_equal
+document_glb() {
+    fresh document
+    local d="$tmp/r4/document"
+    $MESHFIX --quiet "$d/scene.gltf" "$d/out/scene.glb" && $MESHFIX --quiet "$d/out/scene.glb" "$d/back/scene.gltf" || return 1
+    repaired "$d/back/scene.gltf" || return 1
+    grep -q '"big": 9007199254740993, "minus_zero": -0, "e": 1E2' "$d/back/scene.gltf" &&
+        grep -q '"yfov": 0.8' "$d/back/scene.gltf" && ! grep -q zfar "$d/back/scene.gltf" &&
+        grep -q '"name": "the sampler"' "$d/back/scene.gltf" && grep -q '"minVersion": "2.0"' "$d/back/scene.gltf"
+}
+check "the same document through .glb and back: its text kept (2^53+1, zfar absent, minVersion, the sampler's name)" document_glb
+
+shared_normals() {
+    fresh normals
+    local d="$tmp/r4/normals"
+    $MESHFIX --quiet --fix-normals "$d/scene.gltf" "$d/out/scene.gltf" || return 1
+    # mesh B's normals are right: the bytes it shares with A stay as they are
+    cmp "$d/scene.bin" "$d/out/scene.bin" || return 1
+    $MESHFIX --json --inspect "$d/out/scene.gltf" >"$tmp/again.json" || return 1
+    /usr/bin/python3 -c 'import json, sys; m = json.load(open(sys.argv[1]))["files"][0]["meshes"]
+sys.exit(0 if m[1]["normals"]["disagree"] == 0 else 1)' "$tmp/again.json"
+}
+check "--fix-normals on mesh A whose NORMAL bytes mesh B reads too: B's normals stay right" shared_normals
+
+same_file_buffers() {
+    fresh same_file
+    local d="$tmp/r4/same_file"
+    $MESHFIX --quiet "$d/scene.gltf" "$d/scene.gltf" || return 1
+    repaired "$d/scene.gltf" || return 1
+    fresh same_file
+    $MESHFIX --quiet "$d/scene.gltf" "$d/out/scene.gltf" && repaired "$d/out/scene.gltf"
+}
+check "two buffers naming one file: repaired on disk, in place and into another directory" same_file_buffers
+
+upper_glb() {
+    local d="$tmp/r4/upper" ext
+    rm -rf "$d" && mkdir -p "$d"
+    for ext in Glb gLB GLB; do
+        $MESHFIX --quiet "$tmp/g/big/in.gltf" "$d/out.$ext" || return 1
+        [ "$(head -c 4 "$d/out.$ext")" = glTF ] || { echo ".$ext is not a GLB"; head -c 40 "$d/out.$ext"; return 1; }
+    done
+}
+check "an output named .Glb, .gLB or .GLB is a GLB" upper_glb
+
+report_to_full() {
+    $MESHFIX --json --inspect "$tmp/demo.obj" >/dev/full 2>"$tmp/err.txt"
+    [ $? -eq 1 ] && grep -q "stdout" "$tmp/err.txt" || { echo "exit status not 1"; cat "$tmp/err.txt"; return 1; }
+    $MESHFIX --inspect "$tmp/demo.obj" >/dev/full 2>/dev/null
+    [ $? -eq 1 ]
+}
+if [ -w /dev/full ]; then
+    check "a report that cannot be written to stdout (/dev/full): exit 1" report_to_full
+else
+    skip "a report that cannot be written to stdout: no /dev/full here"
+fi
+
+long_names() {
+    local d="$tmp/r4/long" name
+    rm -rf "$d" && mkdir -p "$d"
+    name=$(printf 'n%.0s' $(seq 1 251)).obj # 255 bytes, the most a name may have
+    cp "$tmp/demo.obj" "$d/$name"
+    $MESHFIX --quiet "$d/$name" "$d/$name" || return 1
+    repaired "$d/$name" && no_temporaries "$d"
+}
+check "a file whose name is 255 bytes long is repaired in place" long_names
+
+skin_matrices() {
+    fresh skin
+    local d="$tmp/r4/skin"
+    $MESHFIX --quiet "$d/scene.gltf" "$d/out/scene.gltf" || return 1
+    repaired "$d/out/scene.gltf" || return 1
+    # the inverse-bind matrix is bytes 96..160 of the buffer
+    cmp <(head -c 160 "$d/scene.bin") <(head -c 160 "$d/out/scene.bin")
+}
+check "index bytes under a skin's MAT4 inverse-bind matrices: cloned, the matrices kept" skin_matrices
+
+plus_uri() {
+    fresh plus
+    $MESHFIX --quiet "$tmp/r4/plus/scene.gltf" "$tmp/r4/plus/out/scene.gltf" || return 1
+    repaired "$tmp/r4/plus/out/scene.gltf" && [ -f "$tmp/r4/plus/out/a+b.bin" ]
+}
+check "a buffer URI with '+' (a+b.bin) names a+b.bin, not 'a b.bin'" plus_uri
+
+missing_texture() {
+    fresh missing
+    local d="$tmp/r4/missing"
+    $MESHFIX --quiet "$d/scene.gltf" "$d/scene.gltf" || return 1
+    repaired "$d/scene.gltf" || return 1
+    fresh missing
+    $MESHFIX --quiet "$d/scene.gltf" "$d/fixed.gltf" && repaired "$d/fixed.gltf" || return 1
+    # elsewhere the texture would have to be copied: refused, nothing written
+    one_line_error 1 "gone.png" $MESHFIX "$d/scene.gltf" "$d/out/scene.gltf" || return 1
+    [ -z "$(ls -A "$d/out")" ] || { ls -R "$d/out"; return 1; }
+}
+check "a missing texture: the repair in place (or beside it) goes on; elsewhere refused, nothing written" missing_texture
+
+obj_materials() {
+    local d="$tmp/r4/mtl"
+    rm -rf "$d" && mkdir -p "$d/in/sub"
+    { echo "mtllib sub/m.mtl"; cat "$tmp/demo.obj"; } >"$d/in/a.obj"
+    printf 'newmtl red\nKd 1 0 0\nmap_Kd -s 1 1 1 ../tex/red.png\n' >"$d/in/sub/m.mtl"
+    mkdir -p "$d/in/tex" && echo png >"$d/in/tex/red.png"
+    $MESHFIX --quiet "$d/in" -o "$d/out" || return 1
+    cmp "$d/in/sub/m.mtl" "$d/out/sub/m.mtl" && cmp "$d/in/tex/red.png" "$d/out/tex/red.png" && repaired "$d/out/a.obj"
+}
+check "batch -o: an OBJ's mtllib, and the map it names, go beside its output" obj_materials
+
+# a later move fails: every file the set had replaced is put back
+rename_fails() { # the move that fails (a path's end), meshfix's arguments...
+    local d="$tmp/r4/rename" f fail=$1
+    shift
+    rm -rf "$d" "$d.before" && mkdir -p "$d"
+    cp "$tmp/g/big/in.gltf" "$tmp/g/big/in.bin" "$d/"
+    $MESHFIX --quiet "$tmp/demo.obj" "$d/out.obj" && $MESHFIX --quiet "$tmp/demo.obj" "$d/out.ply" || return 1
+    cp -r "$d" "$d.before"
+    FAILING_IO_RENAME="$fail" LD_PRELOAD="$tmp/failing_io.so" $MESHFIX "$@" >/dev/null 2>"$tmp/err.txt"
+    [ $? -eq 1 ] || { echo "exit status not 1"; cat "$tmp/err.txt"; return 1; }
+    for f in in.gltf in.bin out.obj out.ply; do cmp "$d/$f" "$d.before/$f" || return 1; done
+    [ "$(ls "$d" | wc -l)" -eq 4 ] || { ls "$d"; return 1; }
+    no_temporaries "$d"
+}
+check "in place, the .gltf's move fails after the .bin's: in.bin put back" \
+    rename_fails "/in.gltf" "$tmp/r4/rename/in.gltf" "$tmp/r4/rename/in.gltf"
+check "out.obj replaced, then the --mark file's move fails: out.obj put back" \
+    rename_fails "/out.ply" --policy seed "$tmp/demo.obj" "$tmp/r4/rename/out.obj" --mark "$tmp/r4/rename/out.ply"
+
+# round 3: a companion that is a symbolic link out of the glTF's directory
+link_out() { # case, how (relative, absolute, subdirectory)
+    local base="$tmp/r4/links/$1" target
+    rm -rf "$base" && mkdir -p "$tmp/r4/links" && cp -r "$R4/links/$1" "$base"
+    case "$1" in image*) target=tex.png ;; *) target=scene.bin ;; esac
+    case "$2" in
+        relative) ln -s "../outside/$target" "$base/in/$target" ;;
+        absolute) ln -s "$base/outside/$target" "$base/in/$target" ;;
+        subdirectory) ln -s ../outside "$base/in/sub" ;;
+    esac
+    mkdir -p "$base/out"
+    touch "$base/before"
+    one_line_error 1 "symbolic link out" $MESHFIX "$base/in/scene.gltf" "$base/out/scene.gltf" || return 1
+    one_line_error 1 "symbolic link out" $MESHFIX --quiet "$base/in/scene.gltf" -o "$base/batch" || return 1
+    [ -z "$(ls -A "$base/out")" ] && [ -z "$(find "$base" -newer "$base/before" -name "$target")" ]
+}
+for how in relative absolute subdirectory; do
+    check "an image that is a symbolic link out of the glTF's directory ($how): refused, not copied" link_out image_$how $how
+    check "a buffer that is a symbolic link out of the glTF's directory ($how): refused, not copied" link_out buffer_$how $how
+done
+linked_input_directory() { # a directory given as a link is walked as itself
+    local d="$tmp/r4/linked"
+    rm -rf "$d" && mkdir -p "$d/real"
+    cp "$tmp/demo.obj" "$d/real/a.obj" && ln -s real "$d/link"
+    $MESHFIX --quiet "$d/link" -o "$d/out" && [ -f "$d/out/a.obj" ]
+}
+check "a directory named through a symbolic link is walked" linked_input_directory
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

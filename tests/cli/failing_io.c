@@ -8,6 +8,9 @@
      FAILING_IO_FSYNC=eio       fsync fails with EIO (a device that fails)
      FAILING_IO_FSYNC=sleep     fsync waits 3 seconds first (to interrupt a
                                 run while its temporaries exist)
+     FAILING_IO_RENAME=END      the first rename to a path ending in END
+                                fails with EIO (a move into place that fails
+                                after others succeeded)
 
    Build: cc -shared -fPIC -o failing_io.so failing_io.c -ldl */
 #define _GNU_SOURCE
@@ -50,4 +53,19 @@ int fsync(int fd)
     if (fd > 2 && mode != NULL && strcmp(mode, "sleep") == 0)
         sleep(3);
     return real(fd);
+}
+
+int rename(const char *from, const char *to)
+{
+    static int (*real)(const char *, const char *);
+    static int failed; /* once: putting files back must work */
+    const char *end = getenv("FAILING_IO_RENAME");
+    size_t n = end != NULL ? strlen(end) : 0, length = strlen(to);
+    if (real == NULL)
+        real = (int (*)(const char *, const char *))dlsym(RTLD_NEXT, "rename");
+    if (end != NULL && length >= n && strcmp(to + length - n, end) == 0 && !__atomic_exchange_n(&failed, 1, __ATOMIC_SEQ_CST)) {
+        errno = EIO;
+        return -1;
+    }
+    return real(from, to);
 }

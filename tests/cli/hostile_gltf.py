@@ -23,6 +23,27 @@ library only (json, struct).
       buffer named scene.bin
   empty/scene.gltf      a default material, a default sampler and an empty
       scene ({}: valid glTF, which tinygltf writes back as null)
+Round 4 (r4/):
+  names/in.gltf         buffers in.bin (the cube) and out.bin: a repair to
+      out.gltf beside it must not take out.bin's name
+  glb/m.gltf            buffers m1.bin (the cube) and m.bin: m.glb beside it
+      must not write m1.bin
+  document/scene.gltf   what tinygltf's model loses: a camera without zfar,
+      nulls, [] and {} in extras, 9007199254740993, -0, 1E2, escapes, a
+      sampler's name, asset.minVersion, unknown members and extensions;
+      two meshes share an index accessor (cloned: accessors, bufferViews
+      and the buffer's length change)
+  normals/scene.gltf    mesh A (a cube, its normals pointing in) and mesh B
+      (a quad, its normals right) whose NORMAL accessors share bytes
+  same_file/scene.gltf  two buffers naming s.bin: indices through one,
+      positions through the other
+  skin/scene.gltf       a MAT4 inverse-bind accessor over the first 56
+      bytes of the index accessor's, in one bufferView
+  plus/scene.gltf       its buffer is a+b.bin ('+' is not a space)
+  texture/scene.gltf    an image tex.png beside it; missing/scene.gltf an
+      image that is not there
+  links/NAME/in/scene.gltf  an image or buffer that is a symbolic link out
+      of in/ (the test makes the links)
 """
 import base64
 import json
@@ -205,6 +226,109 @@ def main():
     for sub, name, mesh in (("a", "s.gltf", good), ("b", "t.gltf", cube({5}))):
         doc, data = document([mesh], "scene.bin")
         write_gltf(os.path.join(root, "collide", sub, name), doc, data, "scene.bin")
+    round4(os.path.join(root, "r4"), good)
+
+
+def face_quads():
+    """The cube's faces as quads of 4 corners, counter-clockwise from
+    outside, with their outward normals."""
+    return [((0, 3, 2, 1), (0, 0, -1)), ((4, 5, 6, 7), (0, 0, 1)), ((0, 1, 5, 4), (0, -1, 0)),
+            ((1, 2, 6, 5), (1, 0, 0)), ((2, 3, 7, 6), (0, 1, 0)), ((3, 0, 4, 7), (-1, 0, 0))]
+
+
+def round4(root, good):
+    # 1: names beside the input
+    doc, data = document([good], "in.bin")
+    doc["buffers"].append({"byteLength": 16, "uri": "out.bin"})
+    write_gltf(os.path.join(root, "names", "in.gltf"), doc, data, "in.bin")
+    write(os.path.join(root, "names", "out.bin"), b"out.bin's bytes!")
+    doc, data = document([good], "m1.bin")
+    doc["buffers"].append({"byteLength": 16, "uri": "m.bin"})
+    write_gltf(os.path.join(root, "glb", "m.gltf"), doc, data, "m1.bin")
+    write(os.path.join(root, "glb", "m.bin"), b"m.bin's bytes!!!")
+
+    # 4: a document tinygltf's model does not keep
+    doc, data = document([good], "scene.bin")
+    doc["meshes"].append({"primitives": [dict(doc["meshes"][0]["primitives"][0])], "name": "twin"})
+    doc["nodes"].append({"mesh": 1, "translation": [3, 0, 0], "extras": [None, 1, None]})
+    doc["scenes"][0]["nodes"].append(1)
+    doc["asset"]["minVersion"] = "2.0"
+    doc["asset"]["extras"] = {"list": [1, None, 2], "empty_list": [], "empty_object": {}, "nested": [[], {}, None]}
+    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "aspectRatio": 1.5}}]
+    doc["nodes"][0]["camera"] = 0
+    doc["samplers"] = [{"name": "the sampler", "magFilter": 9729}]
+    doc["extensionsUsed"] = ["EXT_unknown_to_all"]
+    doc["extensions"] = {"EXT_unknown_to_all": {"data": [None, {}, []]}}
+    doc["x_unknown_member"] = {"kept": True}
+    text = json.dumps(doc, indent=1)
+    text = text.replace('"kept": true', '"kept": true, "big": 9007199254740993, "minus_zero": -0, "e": 1E2, '
+                        '"escaped": "caf\\u00e9 \\"q\\""')
+    write(os.path.join(root, "document", "scene.gltf"), text)
+    write(os.path.join(root, "document", "scene.bin"), data)
+
+    # 5: NORMAL bytes shared by two meshes
+    positions, normals, faces = [], [], []
+    for quad, n in face_quads():
+        base = len(positions)
+        positions += [CUBE[k] for k in quad]
+        normals += [tuple(-c for c in n)] * 4  # pointing in: --fix-normals would negate them
+        faces += [(base, base + 1, base + 2), (base, base + 2, base + 3)]
+    p, nb, i = pack_positions(positions), pack_positions(normals), pack_indices(faces)
+    quad = pack_indices([(0, 2, 1), (0, 3, 2)])  # face 0 turned: its face normal is the stored one
+    data = p + nb + i + quad
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": len(p)}, {"buffer": 0, "byteOffset": len(p), "byteLength": len(nb)},
+             {"buffer": 0, "byteOffset": len(p) + len(nb), "byteLength": 72},
+             {"buffer": 0, "byteOffset": len(p) + len(nb) + len(i), "byteLength": 12}]
+    vec3 = lambda view, count, **more: dict({"bufferView": view, "componentType": 5126, "count": count, "type": "VEC3"}, **more)
+    accessors = [vec3(0, 24, min=[0, 0, 0], max=[1, 1, 1]), vec3(1, 24),
+                 {"bufferView": 2, "componentType": 5123, "count": 36, "type": "SCALAR"},
+                 vec3(0, 4, min=[0, 0, 0], max=[1, 1, 0]), vec3(1, 4),
+                 {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+    doc = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0, 1]}], "nodes": [{"mesh": 0}, {"mesh": 1}],
+           "meshes": [{"name": "A", "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]},
+                      {"name": "B", "primitives": [{"attributes": {"POSITION": 3, "NORMAL": 4}, "indices": 5}]}],
+           "accessors": accessors, "bufferViews": views, "buffers": [{"byteLength": len(data), "uri": "scene.bin"}]}
+    write_gltf(os.path.join(root, "normals", "scene.gltf"), doc, data, "scene.bin")
+
+    # 6: two buffers, one file
+    doc, data = document([good], "s.bin")
+    doc["buffers"].append({"byteLength": len(data), "uri": "s.bin"})
+    doc["bufferViews"][0]["buffer"] = 1  # positions through the second
+    write_gltf(os.path.join(root, "same_file", "scene.gltf"), doc, data, "s.bin")
+
+    # 12: inverse-bind matrices over index bytes, in one bufferView
+    p, i = pack_positions(good[0]), pack_indices(good[1])
+    data = p + b"\0" * 8 + i
+    doc = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0, 1]}],
+           "nodes": [{"mesh": 0, "skin": 0}, {"name": "joint"}], "skins": [{"joints": [1], "inverseBindMatrices": 2}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+                         {"bufferView": 1, "byteOffset": 8, "componentType": 5123, "count": 36, "type": "SCALAR"},
+                         {"bufferView": 1, "componentType": 5126, "count": 1, "type": "MAT4"}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(p)},
+                           {"buffer": 0, "byteOffset": len(p), "byteLength": 8 + 72}],
+           "buffers": [{"byteLength": len(data), "uri": "scene.bin"}]}
+    write_gltf(os.path.join(root, "skin", "scene.gltf"), doc, data, "scene.bin")
+
+    # 16, 14: a '+' in a URI; a texture beside the file, and one missing
+    doc, data = document([good], "a+b.bin")
+    write_gltf(os.path.join(root, "plus", "scene.gltf"), doc, data, "a+b.bin")
+    doc, data = document([good], "scene.bin", images=["tex.png"])
+    write_gltf(os.path.join(root, "texture", "scene.gltf"), doc, data, "scene.bin")
+    write(os.path.join(root, "texture", "tex.png"), PNG)
+    doc, data = document([good], "scene.bin", images=["gone.png"])
+    write_gltf(os.path.join(root, "missing", "scene.gltf"), doc, data, "scene.bin")
+
+    # round 3: companions that are links out of in/ (the test makes them)
+    for name in ("image_relative", "image_absolute", "image_subdirectory", "buffer_relative", "buffer_absolute",
+                 "buffer_subdirectory"):
+        uri = ("sub/" if name.endswith("subdirectory") else "") + ("tex.png" if name.startswith("image") else "scene.bin")
+        doc, data = document([good], uri if name.startswith("buffer") else "scene.bin",
+                             images=[uri] if name.startswith("image") else ())
+        base = os.path.join(root, "links", name)
+        write_gltf(os.path.join(base, "in", "scene.gltf"), doc, data, None if name.startswith("buffer") else "scene.bin")
+        write(os.path.join(base, "outside", "tex.png"), PNG)
+        write(os.path.join(base, "outside", "scene.bin"), data)
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@ extern "C" {
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstdio>
@@ -629,6 +630,133 @@ bool write_triangles(const std::string &path, const MeshFile &file, const std::v
         return false;
     }
     return true;
+}
+
+} // namespace tool
+
+namespace tool {
+namespace {
+
+/* Whether a name in a file (an OBJ's mtllib, a map in its .mtl) is a path
+   that stays below the directory it is read from: relative, no "..", no
+   backslash or drive, and, its symbolic links followed, inside it. */
+bool stays_inside(const std::string &directory, const std::string &name)
+{
+    if (name.empty() || name[0] == '/' || name.find('\\') != std::string::npos || name.find(':') != std::string::npos ||
+        name.find('\0') != std::string::npos)
+        return false;
+    for (size_t at = 0; at <= name.size();) {
+        size_t slash = std::min(name.find('/', at), name.size());
+        if (name.compare(at, slash - at, "..") == 0 && slash - at == 2)
+            return false;
+        at = slash + 1;
+    }
+    char *file = realpath((directory + "/" + name).c_str(), nullptr), *base = realpath(directory.c_str(), nullptr);
+    std::string f = file != nullptr ? file : "", d = base != nullptr ? base : "";
+    std::free(file);
+    std::free(base);
+    struct stat st;
+    std::string prefix = d == "/" ? d : d + "/";
+    return !f.empty() && !d.empty() && f.compare(0, prefix.size(), prefix) == 0 && stat(f.c_str(), &st) == 0 &&
+           S_ISREG(st.st_mode);
+}
+
+/* "sub/../tex/t.png" as "tex/t.png": a ".." that goes back into the
+   directory is no way out of it (one that goes above is kept, and
+   refused). */
+std::string collapse(const std::string &path)
+{
+    std::vector<std::string> parts;
+    for (size_t at = 0; at <= path.size();) {
+        size_t slash = std::min(path.find('/', at), path.size());
+        std::string part = path.substr(at, slash - at);
+        if (part == ".." && !parts.empty() && parts.back() != "..")
+            parts.pop_back();
+        else if (!part.empty() && part != ".")
+            parts.push_back(part);
+        at = slash + 1;
+    }
+    std::string out;
+    for (const std::string &part : parts)
+        out += (out.empty() ? "" : "/") + part;
+    return out;
+}
+
+/* The file names a line gives after its keyword: the rest of the line when
+   that names a file (a name with spaces), else each word. */
+std::vector<std::string> line_names(const std::string &directory, const std::string &rest)
+{
+    std::string trimmed = rest;
+    while (!trimmed.empty() && std::isspace((unsigned char)trimmed.back()))
+        trimmed.pop_back();
+    size_t start = trimmed.find_first_not_of(" \t");
+    trimmed = start == std::string::npos ? "" : trimmed.substr(start);
+    if (stays_inside(directory, trimmed))
+        return {trimmed};
+    std::vector<std::string> words;
+    for (size_t at = 0; at < trimmed.size();) {
+        size_t end = trimmed.find_first_of(" \t", at);
+        end = end == std::string::npos ? trimmed.size() : end;
+        if (end > at)
+            words.push_back(trimmed.substr(at, end - at));
+        at = end + 1;
+    }
+    return words;
+}
+
+/* The lines of a text file that start with one of `keywords`, each as the
+   rest of the line. */
+std::vector<std::string> keyword_lines(const std::string &text, const std::vector<std::string> &keywords)
+{
+    std::vector<std::string> found;
+    for (size_t at = 0; at < text.size();) {
+        size_t end = text.find_first_of("\r\n", at);
+        end = end == std::string::npos ? text.size() : end;
+        std::string line = text.substr(at, end - at);
+        size_t start = line.find_first_not_of(" \t");
+        if (start != std::string::npos) {
+            size_t word_end = line.find_first_of(" \t", start);
+            std::string word = line.substr(start, word_end == std::string::npos ? std::string::npos : word_end - start);
+            for (const std::string &k : keywords)
+                if (word == k && word_end != std::string::npos)
+                    found.push_back(line.substr(word_end));
+        }
+        at = end + 1;
+    }
+    return found;
+}
+
+} // namespace
+
+std::vector<std::string> obj_companions(const std::string &obj_path, const std::string &obj_text)
+{
+    std::string directory = directory_of(obj_path), data, error;
+    std::vector<std::string> files;
+    auto add = [&](const std::string &given) {
+        std::string name = collapse(given);
+        if (stays_inside(directory, name) && std::find(files.begin(), files.end(), name) == files.end()) {
+            files.push_back(name);
+            return true;
+        }
+        return false;
+    };
+    static const std::vector<std::string> maps = {"map_Ka", "map_Kd", "map_Ks", "map_Ke", "map_Ns", "map_d", "map_bump",
+                                                  "map_Bump", "bump", "disp", "decal", "refl", "norm", "map_Pr",
+                                                  "map_Pm", "map_Ps"};
+    for (const std::string &rest : keyword_lines(obj_text, {"mtllib"}))
+        for (const std::string &mtl : line_names(directory, rest)) {
+            if (!add(mtl) || !read_file(directory + "/" + collapse(mtl), data, error))
+                continue;
+            /* a map's name is the last word of its line (options come first),
+               relative to the .mtl's directory */
+            std::string mtl_directory = collapse(mtl).find('/') == std::string::npos ? "" : directory_of(collapse(mtl)) + "/";
+            for (const std::string &line : keyword_lines(data, maps)) {
+                std::vector<std::string> words = line_names(directory + "/" + mtl_directory, line);
+                if (!words.empty())
+                    add(mtl_directory + words.back());
+            }
+        }
+    return files;
 }
 
 } // namespace tool

@@ -30,11 +30,31 @@ bool write_mark_picture(const std::string &path, const Job &job, const Settings 
     return write_picture(path, *job.file, job.results, up, text, error);
 }
 
+/* An OBJ written into another directory takes its materials along (its
+   .mtl files and their maps), as a glTF its buffers and images. */
+bool copy_materials(const Job &job, OutputSet &outputs, std::string &error)
+{
+    std::string text, data;
+    if (!read_file(job.input, text, error))
+        return false;
+    for (const std::string &name : obj_companions(job.input, text)) {
+        std::string from = directory_of(job.input) + "/" + name, to = directory_of(job.output) + "/" + name;
+        if (same_file(file_id(from), file_id(to)))
+            continue; /* beside it already */
+        outputs.add_read(from);
+        if (!read_file(from, data, error) || !write_output(outputs, to, "", data, error))
+            return false;
+    }
+    return true;
+}
+
 /* The output in the input's format (every file it names), or in another
    (positions and faces only). */
 bool write_output_file(Job &job, OutputSet &outputs, std::string &error)
 {
     std::string in = job.file->format(), out = format_of(job.output);
+    if (in == "obj" && out == "obj")
+        return copy_materials(job, outputs, error) && job.file->write_outputs(outputs, job.input, job.output, error);
     if (in == out || (is_gltf_format(in) && is_gltf_format(out)))
         return job.file->write_outputs(outputs, job.input, job.output, error);
     std::string path = outputs.reserve(job.output, "", error);

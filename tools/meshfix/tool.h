@@ -81,6 +81,10 @@ std::string base_name(const std::string &path);
    file system (symbolic links, "..") as far as the path exists, the rest
    as text. */
 std::string path_identity(const std::string &path);
+/* The files an OBJ names beside it: its mtllib files and the maps they
+   name, as paths relative to its directory, each one that stays inside it
+   (no "..", no link out) and exists. */
+std::vector<std::string> obj_companions(const std::string &obj_path, const std::string &obj_text);
 /* Loads any supported file (the format from the extension). */
 std::unique_ptr<MeshFile> load_file(const std::string &path, std::string &error);
 
