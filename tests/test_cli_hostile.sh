@@ -586,6 +586,15 @@ check "in place, the .gltf's move fails after the .bin's: in.bin put back" \
 check "out.obj replaced, then the --mark file's move fails: out.obj put back" \
     rename_fails "/out.ply" --policy seed "$tmp/demo.obj" "$tmp/r4/rename/out.obj" --mark "$tmp/r4/rename/out.ply"
 
+bom_document() { # a byte-order mark, as nlohmann json (tinygltf) reads it
+    fresh plus
+    local d="$tmp/r4/plus"
+    { printf '\357\273\277'; cat "$R4/plus/scene.gltf"; } >"$d/bom.gltf"
+    $MESHFIX --quiet "$d/bom.gltf" "$d/out/bom.gltf" && $MESHFIX --quiet "$d/bom.gltf" "$d/out/bom.glb" || return 1
+    repaired "$d/out/bom.gltf" && repaired "$d/out/bom.glb" && [ "$(head -c 21 "$d/out/bom.glb" | tail -c 1)" = "{" ]
+}
+check "a .gltf that starts with a byte-order mark is repaired (its GLB's JSON without one)" bom_document
+
 # round 3: a companion that is a symbolic link out of the glTF's directory
 link_out() { # case, how (relative, absolute, subdirectory)
     local base="$tmp/r4/links/$1" target

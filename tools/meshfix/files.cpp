@@ -635,6 +635,17 @@ bool write_triangles(const std::string &path, const MeshFile &file, const std::v
 } // namespace tool
 
 namespace tool {
+
+bool resolves_inside(const std::string &path, const std::string &directory)
+{
+    char *file = realpath(path.c_str(), nullptr), *base = realpath(directory.empty() ? "." : directory.c_str(), nullptr);
+    std::string f = file != nullptr ? file : "", d = base != nullptr ? base : "";
+    std::free(file);
+    std::free(base);
+    std::string prefix = d == "/" ? d : d + "/";
+    return !f.empty() && !d.empty() && f.compare(0, prefix.size(), prefix) == 0;
+}
+
 namespace {
 
 /* Whether a name in a file (an OBJ's mtllib, a map in its .mtl) is a path
@@ -651,13 +662,8 @@ bool stays_inside(const std::string &directory, const std::string &name)
             return false;
         at = slash + 1;
     }
-    char *file = realpath((directory + "/" + name).c_str(), nullptr), *base = realpath(directory.c_str(), nullptr);
-    std::string f = file != nullptr ? file : "", d = base != nullptr ? base : "";
-    std::free(file);
-    std::free(base);
     struct stat st;
-    std::string prefix = d == "/" ? d : d + "/";
-    return !f.empty() && !d.empty() && f.compare(0, prefix.size(), prefix) == 0 && stat(f.c_str(), &st) == 0 &&
+    return resolves_inside(directory + "/" + name, directory) && stat((directory + "/" + name).c_str(), &st) == 0 &&
            S_ISREG(st.st_mode);
 }
 

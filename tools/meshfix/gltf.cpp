@@ -25,7 +25,6 @@
 #include <cstring>
 #include <map>
 #include <set>
-#include <sstream>
 #include <sys/stat.h>
 
 namespace tool {
@@ -963,20 +962,9 @@ struct Companions {
         }
         return true;
     }
-    /* Whether the file, its symbolic links followed (its own, or a
-       directory's on the way), is inside the glTF's directory: a link
-       would otherwise copy any file it names beside the output. */
-    bool inside(const std::string &path) const
-    {
-        char *file = realpath(path.c_str(), nullptr), *directory = realpath(base.empty() ? "." : base.c_str(), nullptr);
-        std::string f = file ? file : "", d = directory ? directory : "";
-        std::free(file);
-        std::free(directory);
-        if (f.empty() || d.empty())
-            return false;
-        std::string prefix = d == "/" ? d : d + "/";
-        return f.compare(0, prefix.size(), prefix) == 0;
-    }
+    /* A symbolic link out of the glTF's directory would copy any file it
+       names beside the output. */
+    bool inside(const std::string &path) const { return resolves_inside(path, base); }
 };
 
 bool companion_exists(const std::string &path, void *user) { return ((Companions *)user)->allowed(path); }

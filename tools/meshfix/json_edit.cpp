@@ -238,6 +238,8 @@ bool parse_json(const std::string &text, JsonValue &root)
 {
     Parser p{text};
     root = JsonValue();
+    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0)
+        p.at = 3; /* a byte-order mark, as nlohmann json (tinygltf's reader) skips it */
     if (!p.value(root, 0, true))
         return false;
     while (p.at < text.size() && (text[p.at] == ' ' || text[p.at] == '\t' || text[p.at] == '\n' || text[p.at] == '\r' ||

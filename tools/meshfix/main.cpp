@@ -197,18 +197,6 @@ int parse(int argc, char **argv, CommandLine &c)
 
 /* ---- the jobs ---- */
 
-/* Whether `path`, symbolic links followed, is inside the directory
-   `root` (itself resolved). */
-bool inside(const std::string &path, const std::string &root)
-{
-    char *p = realpath(path.c_str(), nullptr), *r = realpath(root.c_str(), nullptr);
-    std::string file = p != nullptr ? p : "", directory = r != nullptr ? r : "";
-    std::free(p);
-    std::free(r);
-    std::string prefix = directory == "/" ? directory : directory + "/";
-    return !file.empty() && !directory.empty() && file.compare(0, prefix.size(), prefix) == 0;
-}
-
 /* A directory's device and inode: the walk enters each once. */
 using DirectoryId = std::pair<unsigned long long, unsigned long long>;
 
@@ -234,7 +222,7 @@ void collect(const std::string &directory, const std::string &relative, const st
     for (const std::string &name : names) {
         std::string path = directory + "/" + name;
         struct stat link;
-        if (lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode) && !inside(path, root)) {
+        if (lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode) && !resolves_inside(path, root)) {
             std::fprintf(stderr, "meshfix: '%s' is a symbolic link out of '%s': skipped\n", path.c_str(), root.c_str());
             continue;
         }

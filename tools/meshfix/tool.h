@@ -81,6 +81,10 @@ std::string base_name(const std::string &path);
    file system (symbolic links, "..") as far as the path exists, the rest
    as text. */
 std::string path_identity(const std::string &path);
+/* Whether `path`, its symbolic links followed (its own, or a directory's
+   on the way), is inside `directory` (resolved too): false when either
+   does not exist. */
+bool resolves_inside(const std::string &path, const std::string &directory);
 /* The files an OBJ names beside it: its mtllib files and the maps they
    name, as paths relative to its directory, each one that stays inside it
    (no "..", no link out) and exists. */
