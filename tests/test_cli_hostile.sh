@@ -359,5 +359,38 @@ no_stray_directory() {
 }
 check "meshfix in.obj out/x/y/o.obj makes no directory 'o' (nor any other) in the current one" no_stray_directory
 
+# ---- text formats: byte-order marks, line ends, comments (formats-work) ----
+# tests/cli/text_variants.py: a cube with one triangle turned in every text
+# format, with every kind of line end (LF, CRLF, lone CR, mixed), with and
+# without a UTF-8 byte-order mark, a comment line right after the first
+# face. A correct repair writes NAME.want.EXT: the input's bytes, its mark
+# and line ends kept, with only the turned triangle's corners swapped.
+
+/usr/bin/python3 tests/cli/text_variants.py "$tmp/text" || { echo "FAIL text_variants.py"; failed=$((failed + 1)); }
+text_variant() { # NAME.in.EXT: repaired to exactly NAME.want.EXT, one triangle fixed
+    local in=$1 out want
+    out=${in/.in./.out.} want=${in/.in./.want.}
+    $MESHFIX "$in" "$out" >"$tmp/text_report.txt" || { cat "$tmp/text_report.txt"; return 1; }
+    tail -n 1 "$tmp/text_report.txt" | grep -q "fixed 1 triangle" || { cat "$tmp/text_report.txt"; return 1; }
+    cmp "$out" "$want"
+}
+for in in "$tmp"/text/*.in.*; do
+    case $in in *_bom.*) what="a UTF-8 byte-order mark and " ;; *) what="" ;; esac
+    name=$(basename "$in")
+    check "${name%%.*}: ${what}these line ends and a comment: the turned triangle fixed, every other byte kept" \
+        text_variant "$in"
+done
+
+# The audit's case: a byte-order mark hid the first v, every index named
+# the next vertex, and this correct tetrahedron (its fifth vertex unused)
+# came out inside out, exit 0.
+printf '\357\273\277v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 0 -1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$tmp/text/tetra_bom.obj"
+obj_bom_kept() {
+    $MESHFIX "$tmp/text/tetra_bom.obj" "$tmp/text/tetra_out.obj" >"$tmp/text_report.txt" || return 1
+    tail -n 1 "$tmp/text_report.txt" | grep -q "^clean" || { cat "$tmp/text_report.txt"; return 1; }
+    cmp "$tmp/text/tetra_bom.obj" "$tmp/text/tetra_out.obj"
+}
+check "OBJ starting with a byte-order mark: its first v read, a correct tetrahedron left as it is" obj_bom_kept
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
