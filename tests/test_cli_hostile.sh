@@ -392,5 +392,23 @@ obj_bom_kept() {
 }
 check "OBJ starting with a byte-order mark: its first v read, a correct tetrahedron left as it is" obj_bom_kept
 
+# An OBJ with normals written in another format keeps the file's 8
+# vertices, shared by its faces, not one per (v, vn) pair (24: six loose
+# quads), and the --mark mesh too.
+obj_converted() {
+    local d="$tmp/text/conv"
+    mkdir -p "$d"
+    $MESHFIX --quiet "$tmp/text/cube_vn.obj" "$d/cube.off" --mark "$d/mark.ply" || return 1
+    $MESHFIX --quiet "$tmp/text/cube_vn.obj" "$d/cube.ply" || return 1
+    [ "$(sed -n 2p "$d/cube.off")" = "8 12 0" ] || { head -n 2 "$d/cube.off"; return 1; }
+    # the OFF's vertices are the OBJ's v lines, in order
+    [ "$(sed -n 3,10p "$d/cube.off")" = "$(sed -n 's/^v //p' "$tmp/text/cube_vn.obj")" ] || return 1
+    for ply in "$d/cube.ply" "$d/mark.ply"; do
+        grep -aq '^element vertex 8$' "$ply" || { grep -a '^element' "$ply"; return 1; }
+    done
+    $MESHFIX --inspect "$d/cube.off" | grep -q 'boundary 0, manifold 18'
+}
+check "OBJ with a normal per face -> OFF, PLY and --mark PLY: the file's 8 vertices, not 24" obj_converted
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -173,7 +173,8 @@ struct ObjReader {
 
     /* The library's vertices: one per distinct (v, vn) pair when the file
        has normals (an engine's vertex buffer, split at normal seams; the
-       library joins equal positions), else one per v. */
+       library joins equal positions), else one per v. The file's own v
+       stay in the unit for a file written in another format. */
     void build_unit()
     {
         Unit &u = file.units.emplace_back();
@@ -194,6 +195,7 @@ struct ObjReader {
                 if (found.second) {
                     const double *p = &positions[3 * corner_v[c]];
                     u.positions.insert(u.positions.end(), p, p + 3);
+                    u.file_vertex.push_back((uint32_t)corner_v[c]);
                     if (corner_vn[c] >= 0)
                         u.vertex_normals.insert(u.vertex_normals.end(), &normals[3 * corner_vn[c]],
                                                 &normals[3 * corner_vn[c]] + 3);
@@ -202,6 +204,7 @@ struct ObjReader {
                 }
                 vertex_of[c] = found.first->second;
             }
+            u.file_positions = std::move(positions);
         }
         for (size_t f = 0; f < faces; ++f)
             add_face(u, &vertex_of[file.face_first[f]], file.face_first[f + 1] - file.face_first[f], (uint32_t)f);
