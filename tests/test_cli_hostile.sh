@@ -623,5 +623,56 @@ linked_input_directory() { # a directory given as a link is walked as itself
 }
 check "a directory named through a symbolic link is walked" linked_input_directory
 
+# ---- text formats: byte-order marks, line ends, comments (formats-work) ----
+# tests/cli/text_variants.py: a cube with one triangle turned in every text
+# format, with every kind of line end (LF, CRLF, lone CR, mixed), with and
+# without a UTF-8 byte-order mark, a comment line right after the first
+# face. A correct repair writes NAME.want.EXT: the input's bytes, its mark
+# and line ends kept, with only the turned triangle's corners swapped.
+
+/usr/bin/python3 tests/cli/text_variants.py "$tmp/text" || { echo "FAIL text_variants.py"; failed=$((failed + 1)); }
+text_variant() { # NAME.in.EXT: repaired to exactly NAME.want.EXT, one triangle fixed
+    local in=$1 out want
+    out=${in/.in./.out.} want=${in/.in./.want.}
+    $MESHFIX "$in" "$out" >"$tmp/text_report.txt" || { cat "$tmp/text_report.txt"; return 1; }
+    tail -n 1 "$tmp/text_report.txt" | grep -q "fixed 1 triangle" || { cat "$tmp/text_report.txt"; return 1; }
+    cmp "$out" "$want"
+}
+for in in "$tmp"/text/*.in.*; do
+    case $in in *_bom.*) what="a UTF-8 byte-order mark and " ;; *) what="" ;; esac
+    name=$(basename "$in")
+    check "${name%%.*}: ${what}these line ends and a comment: the turned triangle fixed, every other byte kept" \
+        text_variant "$in"
+done
+
+# The audit's case: a byte-order mark hid the first v, every index named
+# the next vertex, and this correct tetrahedron (its fifth vertex unused)
+# came out inside out, exit 0.
+printf '\357\273\277v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 0 -1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >"$tmp/text/tetra_bom.obj"
+obj_bom_kept() {
+    $MESHFIX "$tmp/text/tetra_bom.obj" "$tmp/text/tetra_out.obj" >"$tmp/text_report.txt" || return 1
+    tail -n 1 "$tmp/text_report.txt" | grep -q "^clean" || { cat "$tmp/text_report.txt"; return 1; }
+    cmp "$tmp/text/tetra_bom.obj" "$tmp/text/tetra_out.obj"
+}
+check "OBJ starting with a byte-order mark: its first v read, a correct tetrahedron left as it is" obj_bom_kept
+
+# An OBJ with normals written in another format keeps the file's 8
+# vertices, shared by its faces, not one per (v, vn) pair (24: six loose
+# quads), and the --mark mesh too.
+obj_converted() {
+    local d="$tmp/text/conv"
+    mkdir -p "$d"
+    $MESHFIX --quiet "$tmp/text/cube_vn.obj" "$d/cube.off" --mark "$d/mark.ply" || return 1
+    $MESHFIX --quiet "$tmp/text/cube_vn.obj" "$d/cube.ply" || return 1
+    [ "$(sed -n 2p "$d/cube.off")" = "8 12 0" ] || { head -n 2 "$d/cube.off"; return 1; }
+    # the OFF's vertices are the OBJ's v lines, in order
+    [ "$(sed -n 3,10p "$d/cube.off")" = "$(sed -n 's/^v //p' "$tmp/text/cube_vn.obj")" ] || return 1
+    for ply in "$d/cube.ply" "$d/mark.ply"; do
+        grep -aq '^element vertex 8$' "$ply" || { grep -a '^element' "$ply"; return 1; }
+    done
+    $MESHFIX --inspect "$d/cube.off" | grep -q 'boundary 0, manifold 18'
+}
+check "OBJ with a normal per face -> OFF, PLY and --mark PLY: the file's 8 vertices, not 24" obj_converted
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

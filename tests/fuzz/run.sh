@@ -11,6 +11,10 @@
 #            companions in a scratch directory; seeds: the glTF files of
 #            assimp-testmodels and tests/cli/hostile_gltf.py, packed by
 #            tests/fuzz/gltf_seeds.py
+#   text     the command-line tool's OBJ, OFF, STL and PLY readers and
+#            writers (load, repair, write, commit, load again); seeds: the
+#            files of tests/cli/text_variants.py and assimp-testmodels'
+#            files of those formats, a format byte before each
 #   stress-msan  the same with MemorySanitizer instead (reads of memory
 #            never written); not in the default list: FUZZ_TARGETS adds it
 # A crash does not stop the other targets: its input is saved in
@@ -28,7 +32,7 @@ if ! printf 'int LLVMFuzzerTestOneInput(const char*d,unsigned long n){return 0;}
     apt-get update -qq && apt-get install -y -qq clang libclang-rt-14-dev >/dev/null || exit 1
 fi
 seconds=${FUZZ_SECONDS:-60}
-targets=${FUZZ_TARGETS:-meshfix loaders stress gltf}
+targets=${FUZZ_TARGETS:-meshfix loaders stress gltf text}
 mkdir -p build/fuzz
 failed=0
 summary=""
@@ -43,19 +47,31 @@ for target in $targets; do
     stress-msan) source=stress sanitizers="memory -fsanitize-memory-track-origins=2" max_len=200000 timeout=60
         knobs="-DMESHFIX__MORTON_MIN=64 -DMESHFIX__PARALLEL_UNIT=512" ;;
     esac
-    if [ "$target" = gltf ]; then
+    if [ "$target" = gltf ] || [ "$target" = text ]; then
         # C++ against the tool's sources (all but main.cpp) and tinygltf; the
         # --mark picture is not fuzzed here (no libpng: MESHFIX_TOOL_NO_PNG)
-        max_len=262144
-        mkdir -p build/fuzz/seeds_gltf
-        /usr/bin/python3 tests/cli/hostile_gltf.py build/fuzz/hostile_gltf &&
-            /usr/bin/python3 tests/fuzz/gltf_seeds.py build/fuzz/seeds_gltf \
-                $(find /usr/share/assimp/models/glTF2 build/fuzz/hostile_gltf -name '*.gltf' -o -name '*.glb' | sort)
+        mkdir -p build/fuzz/seeds_$target
+        if [ "$target" = gltf ]; then
+            max_len=262144
+            /usr/bin/python3 tests/cli/hostile_gltf.py build/fuzz/hostile_gltf &&
+                /usr/bin/python3 tests/fuzz/gltf_seeds.py build/fuzz/seeds_gltf \
+                    $(find /usr/share/assimp/models/glTF2 build/fuzz/hostile_gltf -name '*.gltf' -o -name '*.glb' | sort)
+        else
+            max_len=65536
+            /usr/bin/python3 tests/cli/text_variants.py build/fuzz/text_variants
+            k=0
+            for f in $(find build/fuzz/text_variants /usr/share/assimp/models/OBJ /usr/share/assimp/models/OFF \
+                    /usr/share/assimp/models/STL /usr/share/assimp/models/PLY -type f -size -64k 2>/dev/null | sort); do
+                case ${f,,} in *.obj) b=0 ;; *.off) b=1 ;; *.stl) b=2 ;; *.ply) b=3 ;; *) continue ;; esac
+                { printf "\\$(printf '%03o' $((b + 4 * (k % 4))))"; cat "$f"; } >build/fuzz/seeds_text/$k
+                k=$((k + 1))
+            done
+        fi
         # shellcheck disable=SC2086
         build() {
-            clang -g -O1 -fsanitize=fuzzer-no-link,$sanitizers -std=c99 -c -o build/fuzz/gltf_libs.o tools/meshfix/libs.c &&
-                clang++ -g -O1 -std=c++17 -fsanitize=fuzzer,$sanitizers -DMESHFIX_TOOL_NO_PNG ${FUZZ_CFLAGS:-} -o build/fuzz/fuzz_gltf \
-                    tests/fuzz/fuzz_gltf.cpp $(ls tools/meshfix/*.cpp | grep -v main.cpp) build/fuzz/gltf_libs.o \
+            clang -g -O1 -fsanitize=fuzzer-no-link,$sanitizers -std=c99 -c -o build/fuzz/${target}_libs.o tools/meshfix/libs.c &&
+                clang++ -g -O1 -std=c++17 -fsanitize=fuzzer,$sanitizers -DMESHFIX_TOOL_NO_PNG ${FUZZ_CFLAGS:-} -o build/fuzz/fuzz_$target \
+                    tests/fuzz/fuzz_$target.cpp $(ls tools/meshfix/*.cpp | grep -v main.cpp) build/fuzz/${target}_libs.o \
                     -ltinygltf -pthread
         }
     else
@@ -79,7 +95,7 @@ for target in $targets; do
     build/fuzz/fuzz_$target -max_total_time="$seconds" -timeout=$timeout -report_slow_units=$timeout \
         -print_final_stats=1 -max_len=$max_len \
         -artifact_prefix=build/fuzz/crashes_$target/ ${FUZZ_FLAGS:-} \
-        build/fuzz/corpus_$target $(if [ "$target" = gltf ]; then echo build/fuzz/seeds_gltf; else echo tests/fuzz/corpus/$source; fi) \
+        build/fuzz/corpus_$target $(if [ -d build/fuzz/seeds_$target ]; then echo build/fuzz/seeds_$target; else echo tests/fuzz/corpus/$source; fi) \
         >"$log" 2>&1
     status=$?
     grep -E 'stat::number_of_executed_units|stat::peak_rss|invariant violated|assertion failed|ERROR|WARNING: Memory|SUMMARY|Test unit written|Done' "$log" |

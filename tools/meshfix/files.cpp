@@ -585,6 +585,13 @@ void patch_tint(unsigned int patch, unsigned char rgb[3])
     rgb[2] = (unsigned char)(140 + (h >> 24) % 100);
 }
 
+/* The file's vertex of the unit's vertex v: the written mesh has the
+   file's vertices, shared by its faces as in the file, not the library's
+   (an OBJ's (v, vn) pairs would split a cube into six loose quads). */
+namespace {
+uint32_t file_vertex_of(const Unit &u, uint32_t v) { return u.file_vertex.empty() ? v : u.file_vertex[v]; }
+} // namespace
+
 bool write_triangles(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
                      bool colours, std::string &error)
 {
@@ -595,12 +602,14 @@ bool write_triangles(const std::string &path, const MeshFile &file, const std::v
         const Unit &u = file.units[i];
         const UnitResult &r = results[i];
         unsigned int base = (unsigned int)(positions.size() / 3);
-        for (double p : u.positions)
+        for (double p : u.file_vertex.empty() ? u.positions : u.file_positions)
             positions.push_back((float)p);
         for (size_t t = 0; t < u.indices.size() / 3; ++t) {
             bool flipped = written_flipped(u, r, t);
-            indices.insert(indices.end(), {base + u.indices[3 * t], base + u.indices[3 * t + (flipped ? 2 : 1)],
-                                           base + u.indices[3 * t + (flipped ? 1 : 2)]});
+            const uint32_t *corner = &u.indices[3 * t];
+            indices.insert(indices.end(), {base + file_vertex_of(u, corner[0]),
+                                           base + file_vertex_of(u, corner[flipped ? 2 : 1]),
+                                           base + file_vertex_of(u, corner[flipped ? 1 : 2])});
             unsigned char tint[3];
             switch (mark_of(u, r, t)) {
             case Mark::doubtful:

@@ -39,6 +39,13 @@ struct Unit {
     size_t face_count = 0;
     std::vector<float> triangle_normals;  /* empty, or 3 per triangle (STL facet normals) */
     std::vector<float> vertex_normals;    /* empty, or 3 per vertex (OBJ vn, PLY nx, glTF NORMAL) */
+    /* The file's own vertices where the library's are split from them
+       (OBJ with normals: a vertex per (v, vn) pair): x y z per file
+       vertex, and the file vertex of each library vertex; both empty when
+       the library's vertices are the file's. A file written in another
+       format keeps the file's vertices and how its faces share them. */
+    std::vector<double> file_positions;
+    std::vector<uint32_t> file_vertex;
     /* The normals the file stores per vertex (OBJ vn, PLY nx ny nz, glTF
        NORMAL): x y z per slot, and the faces that use each, as (slot, face)
        pairs; find_flat_normals turns them into flat_normals. */

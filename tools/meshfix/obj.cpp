@@ -29,35 +29,36 @@ public:
     std::vector<Edit> edits;
 };
 
-/* A backslash that ends a line joins the next one to it (the OBJ spec's
-   continuation): its length with the line break, or 0. */
+/* A backslash right before a line break joins the next line to its own
+   (the OBJ spec's continuation), and one that ends the file joins
+   nothing: its length with the break, or 0. */
 size_t continuation(const std::string &data, size_t at)
 {
     if (data[at] != '\\')
         return 0;
-    size_t next = at + 1 < data.size() && data[at + 1] == '\r' ? at + 2 : at + 1;
-    return next >= data.size() ? next - at : data[next] == '\n' ? next + 1 - at : 0;
+    size_t joined = line_break(data, at + 1);
+    return joined != 0 || at + 1 == data.size() ? joined + 1 : 0;
 }
 
 /* The tokens of the logical line starting at `at`, up to a '#' comment;
-   `at` moves past it and `lines` counts the line breaks it crossed. */
+   `at` moves past it and its line break, and `lines` counts the line
+   breaks it crossed (LF, CRLF and a lone CR each end a line). */
 std::vector<Span> line_tokens(const std::string &data, size_t &at, size_t &lines)
 {
     std::vector<Span> tokens;
     size_t n = data.size(), joined;
-    while (at < n && data[at] != '\n') {
+    while (at < n && line_break(data, at) == 0) {
         char c = data[at];
         if (c == '#') {
-            while (at < n && data[at] != '\n')
-                ++at;
+            at = line_end(data, at);
             break;
         }
         if ((joined = continuation(data, at)) != 0) {
             at += joined;
-            lines += data[at - 1] == '\n';
+            ++lines;
             continue;
         }
-        if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+        if (is_space(c)) {
             ++at;
             continue;
         }
@@ -67,7 +68,7 @@ std::vector<Span> line_tokens(const std::string &data, size_t &at, size_t &lines
         tokens.push_back({begin, at});
     }
     if (at < n) {
-        ++at;
+        at += line_break(data, at);
         ++lines;
     }
     return tokens;
@@ -142,7 +143,7 @@ struct ObjReader {
 
     bool read()
     {
-        size_t at = 0;
+        size_t at = byte_order_mark(file.data);
         file.face_first.push_back(0);
         size_t lines = 0;
         while (at < file.data.size()) {
@@ -172,7 +173,8 @@ struct ObjReader {
 
     /* The library's vertices: one per distinct (v, vn) pair when the file
        has normals (an engine's vertex buffer, split at normal seams; the
-       library joins equal positions), else one per v. */
+       library joins equal positions), else one per v. The file's own v
+       stay in the unit for a file written in another format. */
     void build_unit()
     {
         Unit &u = file.units.emplace_back();
@@ -193,6 +195,7 @@ struct ObjReader {
                 if (found.second) {
                     const double *p = &positions[3 * corner_v[c]];
                     u.positions.insert(u.positions.end(), p, p + 3);
+                    u.file_vertex.push_back((uint32_t)corner_v[c]);
                     if (corner_vn[c] >= 0)
                         u.vertex_normals.insert(u.vertex_normals.end(), &normals[3 * corner_vn[c]],
                                                 &normals[3 * corner_vn[c]] + 3);
@@ -201,6 +204,7 @@ struct ObjReader {
                 }
                 vertex_of[c] = found.first->second;
             }
+            u.file_positions = std::move(positions);
         }
         for (size_t f = 0; f < faces; ++f)
             add_face(u, &vertex_of[file.face_first[f]], file.face_first[f + 1] - file.face_first[f], (uint32_t)f);

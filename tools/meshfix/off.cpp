@@ -6,8 +6,6 @@
 #include "meshfile.h"
 #include "text.h"
 
-#include <cstring>
-
 namespace tool {
 namespace {
 
@@ -23,31 +21,10 @@ public:
     std::vector<Edit> edits;
 };
 
-struct OffReader {
-    const std::string &data;
-    size_t at = 0;
-
-    /* The next word, across lines, skipping '#' comments; false at the end. */
-    bool word(Span &s)
-    {
-        for (;;) {
-            while (at < data.size() && is_space(data[at]))
-                ++at;
-            if (at < data.size() && data[at] == '#') {
-                while (at < data.size() && data[at] != '\n')
-                    ++at;
-                continue;
-            }
-            break;
-        }
-        s.begin = at;
-        while (at < data.size() && !is_space(data[at]))
-            ++at;
-        s.end = at;
-        return s.end > s.begin;
-    }
-
-    std::string text(const Span &s) const { return data.substr(s.begin, s.end - s.begin); }
+/* OFF is words across lines (text.h's scanner): counts, coordinates and
+   face indices, with what follows them on their line left alone. */
+struct OffReader : WordScanner {
+    using WordScanner::WordScanner;
 
     /* A count within `limit`. */
     bool count(unsigned long long limit, unsigned long long &out, Span *where = nullptr)
@@ -60,12 +37,6 @@ struct OffReader {
         if (where != nullptr)
             *where = s;
         return true;
-    }
-
-    void skip_line()
-    {
-        while (at < data.size() && data[at] != '\n')
-            ++at;
     }
 };
 
@@ -92,7 +63,7 @@ std::unique_ptr<MeshFile> load_off(const std::string &data, std::string &error)
 {
     std::unique_ptr<OffFile> file(new OffFile);
     file->data = data;
-    OffReader r{file->data};
+    OffReader r(file->data);
     Span s;
     unsigned long long nv, nf, ne;
     if (!r.word(s) || r.text(s).find("OFF") == std::string::npos) {

@@ -83,13 +83,14 @@ struct PlyReader {
         return false;
     }
 
-    /* One header line as words; `at` moves past it. */
+    /* One header line as words; `at` moves past it and its line break
+       (LF, CRLF or a lone CR). */
     std::vector<std::string> header_line()
     {
         std::vector<std::string> words;
-        size_t end = file.data.find('\n', at);
-        std::string line = file.data.substr(at, end == std::string::npos ? std::string::npos : end - at);
-        at = end == std::string::npos ? file.data.size() : end + 1;
+        size_t end = line_end(file.data, at);
+        std::string line = file.data.substr(at, end - at);
+        at = end + line_break(file.data, end);
         size_t i = 0;
         while (i < line.size()) {
             while (i < line.size() && is_space(line[i]))
@@ -105,16 +106,23 @@ struct PlyReader {
 
     bool header()
     {
+        at = byte_order_mark(file.data);
         std::vector<std::string> w = header_line();
         if (w.size() != 1 || w[0] != "ply")
             return fail("not a PLY file");
+        /* a header written with lone CRs ends with one: the binary data
+           after it may start with a 0x0A byte */
+        bool lone_cr = file.data[at - 1] == '\r';
         bool format = false;
         while (at < file.data.size()) {
             w = header_line();
             if (w.empty() || w[0] == "comment" || w[0] == "obj_info")
                 continue;
-            if (w[0] == "end_header")
+            if (w[0] == "end_header") {
+                if (lone_cr && file.data[at - 1] == '\n')
+                    --at;
                 return format || fail("PLY header without format");
+            }
             if (w[0] == "format" && w.size() >= 2) {
                 format = true;
                 if (w[1] == "ascii")

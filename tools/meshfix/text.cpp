@@ -1,11 +1,56 @@
-/* meshfix command-line tool: text helpers for the lossless writers. */
+/* meshfix command-line tool: text helpers for the readers and the
+   lossless writers. */
 #include "text.h"
 
 #include <algorithm>
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
 
 namespace tool {
+
+size_t byte_order_mark(const std::string &data) { return data.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0; }
+
+size_t line_break(const std::string &data, size_t at)
+{
+    if (at >= data.size())
+        return 0;
+    if (data[at] == '\n')
+        return 1;
+    if (data[at] != '\r')
+        return 0;
+    return at + 1 < data.size() && data[at + 1] == '\n' ? 2 : 1;
+}
+
+size_t line_end(const std::string &data, size_t at)
+{
+    while (at < data.size() && data[at] != '\n' && data[at] != '\r')
+        ++at;
+    return at;
+}
+
+bool WordScanner::word(Span &s)
+{
+    for (;;) {
+        while (at < data.size() && is_space(data[at]))
+            ++at;
+        if (at < data.size() && data[at] == '#') {
+            skip_line();
+            continue;
+        }
+        break;
+    }
+    s.begin = at;
+    while (at < data.size() && !is_space(data[at]))
+        ++at;
+    s.end = at;
+    return s.end > s.begin;
+}
+
+bool WordScanner::is(const Span &s, const char *w) const
+{
+    return s.end - s.begin == std::strlen(w) && data.compare(s.begin, s.end - s.begin, w) == 0;
+}
 
 std::string splice(const std::string &data, std::vector<Edit> edits)
 {
