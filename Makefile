@@ -145,6 +145,12 @@ test-only: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES
       $(SUITES:%=$(B)/%_fast) $(B)/test_openmesh
 	@CC="$(CC)" CXX="$(CXX)" MAKE="$(MAKE)" bash tests/run_all.sh
 
+# `make quick`: the six C suites, plain builds, and the tool's own tests
+# (tests/quick.sh); `make quick WORD=cut` only the C tests whose names
+# contain "cut", as `build/test_NAME WORD` does for one suite
+quick: $(B)/meshfix $(B)/demo_mesh $(SUITES:%=$(B)/%)
+	@bash tests/quick.sh $(WORD)
+
 $(B)/trust_eval: tests/eval/trust_eval.c tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/trust_eval.c -lm
 
@@ -174,5 +180,5 @@ blender-addon: $(B)/meshfix_blender.zip
 $(B)/meshfix_blender.zip: $(BLENDER_ADDON) | $(B)
 	sh blender/build.sh $@
 
-.PHONY: all demo sdf-demo blender-addon test test-only bench fuzz clean FORCE
+.PHONY: all demo sdf-demo blender-addon test test-only quick bench fuzz clean FORCE
 FORCE:
