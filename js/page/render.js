@@ -1,0 +1,141 @@
+// The page's renderer: triangles into a 2D canvas through a z-buffer of its
+// own (no WebGL, so every browser, and a headless one without a GPU, draws
+// the same pixels). Orthographic, a light at the eye.
+//   grey   a face seen from its front
+//   blue   a face seen from behind (its back: drawn, never culled)
+//   red    a face the repair flips (the "before" view only), either side
+// A part whose node mirrors (glTF, negative determinant) has its sides
+// swapped, as a renderer's culling swaps them.
+
+export const COLOURS = {
+    front: [205, 205, 200],
+    back: [70, 115, 235],
+    flipped: [235, 35, 30],
+    background: [255, 255, 255],
+};
+
+// Which RGBA pixel is which colour family: red (a flipped face), blue (a
+// back face), or something else. The test counts pixels the same way.
+export function pixelKind(r, g, b) {
+    if (r > 60 && r > 2.5 * g && r > 2.5 * b)
+        return 'red';
+    if (b > 60 && b > 1.5 * r && b > 1.2 * g)
+        return 'blue';
+    return 'other';
+}
+
+// The camera for a set of parts: centre and radius of their bounds, the up
+// axis (0 x, 1 y, 2 z), yaw and pitch in degrees.
+export function frame(parts, up) {
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (const part of parts)
+        for (let v = 0; v < part.positions.length; v += 3)
+            for (let k = 0; k < 3; ++k) {
+                const x = part.positions[v + k];
+                if (Number.isFinite(x)) {
+                    lo[k] = Math.min(lo[k], x);
+                    hi[k] = Math.max(hi[k], x);
+                }
+            }
+    if (!(lo[0] <= hi[0]))
+        return { centre: [0, 0, 0], radius: 1, up };
+    const centre = lo.map((l, k) => (l + hi[k]) / 2);
+    const radius = Math.max(1e-30, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
+    return { centre, radius, up };
+}
+
+// right, up and towards-the-eye unit vectors in world space
+function basis(up, yawDeg, pitchDeg) {
+    const yaw = (yawDeg * Math.PI) / 180, pitch = (pitchDeg * Math.PI) / 180;
+    // in a frame where z is up: the eye at (cos p sin y, -cos p cos y, sin p)
+    const eye = [Math.cos(pitch) * Math.sin(yaw), -Math.cos(pitch) * Math.cos(yaw), Math.sin(pitch)];
+    const right = [Math.cos(yaw), Math.sin(yaw), 0];
+    const top = [eye[1] * right[2] - eye[2] * right[1], eye[2] * right[0] - eye[0] * right[2], eye[0] * right[1] - eye[1] * right[0]];
+    // z-up to the file's up: y up maps (x, y, z) -> (x, z, -y); x up maps to (z, x, y)
+    const to = up === 2 ? (v) => v : up === 1 ? (v) => [v[0], v[2], -v[1]] : (v) => [v[2], v[0], v[1]];
+    return { right: to(right), top: to(top), eye: to(eye) };
+}
+
+// Draws `parts` ({ positions, indices, flipped, mirrored }) into the canvas.
+// Returns the pixel counts { red, blue, drawn }.
+export function render(canvas, parts, view, options = {}) {
+    const width = canvas.width, height = canvas.height;
+    const context = canvas.getContext('2d');
+    const image = context.createImageData(width, height);
+    const pixels = image.data;
+    const depth = new Float32Array(width * height).fill(-Infinity);
+    for (let i = 0; i < width * height; ++i) {
+        pixels[4 * i] = COLOURS.background[0];
+        pixels[4 * i + 1] = COLOURS.background[1];
+        pixels[4 * i + 2] = COLOURS.background[2];
+        pixels[4 * i + 3] = 255;
+    }
+    const { right, top, eye } = basis(view.up, view.yaw, view.pitch);
+    const scale = (0.46 * Math.min(width, height)) / view.radius;
+    const [cx, cy, cz] = view.centre;
+    const showFlipped = !!options.showFlipped;
+    for (const part of parts) {
+        const p = part.positions, n = p.length / 3;
+        const sx = new Float32Array(n), sy = new Float32Array(n), sz = new Float32Array(n);
+        for (let v = 0; v < n; ++v) {
+            const x = p[3 * v] - cx, y = p[3 * v + 1] - cy, z = p[3 * v + 2] - cz;
+            sx[v] = width / 2 + scale * (x * right[0] + y * right[1] + z * right[2]);
+            sy[v] = height / 2 - scale * (x * top[0] + y * top[1] + z * top[2]);
+            sz[v] = x * eye[0] + y * eye[1] + z * eye[2];
+        }
+        const idx = part.indices;
+        for (let t = 0; 3 * t + 2 < idx.length; ++t) {
+            const a = idx[3 * t], b = idx[3 * t + 1], c = idx[3 * t + 2];
+            const ax = sx[a], ay = sy[a], bx = sx[b], by = sy[b], qx = sx[c], qy = sy[c];
+            // twice the signed area on screen; y points down, so a front face (CCW as seen) is negative
+            const area = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax);
+            if (!(area !== 0) || !Number.isFinite(area))
+                continue;
+            const front = (area < 0) !== !!part.mirrored;
+            // the light at the eye: the face's slope towards the viewer
+            const ux = p[3 * b] - p[3 * a], uy = p[3 * b + 1] - p[3 * a + 1], uz = p[3 * b + 2] - p[3 * a + 2];
+            const wx = p[3 * c] - p[3 * a], wy = p[3 * c + 1] - p[3 * a + 1], wz = p[3 * c + 2] - p[3 * a + 2];
+            const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+            const length = Math.hypot(nx, ny, nz);
+            const facing = length > 0 ? Math.abs(nx * eye[0] + ny * eye[1] + nz * eye[2]) / length : 0;
+            const shade = 0.45 + 0.55 * facing;
+            const colour = showFlipped && part.flipped && part.flipped[t] ? COLOURS.flipped : front ? COLOURS.front : COLOURS.back;
+            const r = colour[0] * shade, g = colour[1] * shade, bl = colour[2] * shade;
+            const za = sz[a], zb = sz[b], zc = sz[c];
+            const x0 = Math.max(0, Math.floor(Math.min(ax, bx, qx))), x1 = Math.min(width - 1, Math.ceil(Math.max(ax, bx, qx)));
+            const y0 = Math.max(0, Math.floor(Math.min(ay, by, qy))), y1 = Math.min(height - 1, Math.ceil(Math.max(ay, by, qy)));
+            const inv = 1 / area;
+            for (let y = y0; y <= y1; ++y) {
+                const py = y + 0.5;
+                for (let x = x0; x <= x1; ++x) {
+                    const px = x + 0.5;
+                    // barycentric weights of the pixel centre
+                    const w0 = ((bx - px) * (qy - py) - (by - py) * (qx - px)) * inv;
+                    const w1 = ((qx - px) * (ay - py) - (qy - py) * (ax - px)) * inv;
+                    const w2 = 1 - w0 - w1;
+                    if (w0 < 0 || w1 < 0 || w2 < 0)
+                        continue;
+                    const z = w0 * za + w1 * zb + w2 * zc;
+                    const at = y * width + x;
+                    if (z <= depth[at])
+                        continue;
+                    depth[at] = z;
+                    pixels[4 * at] = r;
+                    pixels[4 * at + 1] = g;
+                    pixels[4 * at + 2] = bl;
+                }
+            }
+        }
+    }
+    context.putImageData(image, 0, 0);
+    let red = 0, blue = 0, drawn = 0;
+    for (let i = 0; i < width * height; ++i) {
+        if (depth[i] === -Infinity)
+            continue;
+        drawn++;
+        const kind = pixelKind(pixels[4 * i], pixels[4 * i + 1], pixels[4 * i + 2]);
+        red += kind === 'red';
+        blue += kind === 'blue';
+    }
+    return { red, blue, drawn };
+}
