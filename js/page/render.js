@@ -24,8 +24,9 @@ export function pixelKind(r, g, b) {
     return 'other';
 }
 
-// The camera for a set of parts: centre and radius of their bounds, the up
-// axis (0 x, 1 y, 2 z), yaw and pitch in degrees.
+// The camera for a set of parts: their bounds and the up axis (0 x, 1 y,
+// 2 z); the view adds yaw and pitch in degrees. Each view fits the box's
+// eight corners as they project.
 export function frame(parts, up) {
     const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
     for (const part of parts)
@@ -38,10 +39,8 @@ export function frame(parts, up) {
                 }
             }
     if (!(lo[0] <= hi[0]))
-        return { centre: [0, 0, 0], radius: 1, up };
-    const centre = lo.map((l, k) => (l + hi[k]) / 2);
-    const radius = Math.max(1e-30, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
-    return { centre, radius, up };
+        return { lo: [-1, -1, -1], hi: [1, 1, 1], up };
+    return { lo, hi, up };
 }
 
 // right, up and towards-the-eye unit vectors in world space
@@ -71,8 +70,15 @@ export function render(canvas, parts, view, options = {}) {
         pixels[4 * i + 3] = 255;
     }
     const { right, top, eye } = basis(view.up, view.yaw, view.pitch);
-    const scale = (0.46 * Math.min(width, height)) / view.radius;
-    const [cx, cy, cz] = view.centre;
+    const { lo, hi } = view;
+    const [cx, cy, cz] = [0, 1, 2].map((k) => (lo[k] + hi[k]) / 2);
+    let spanX = 0, spanY = 0;
+    for (let corner = 0; corner < 8; ++corner) {
+        const d = [0, 1, 2].map((k) => ((corner >> k) & 1 ? hi[k] - lo[k] : lo[k] - hi[k]) / 2);
+        spanX = Math.max(spanX, Math.abs(d[0] * right[0] + d[1] * right[1] + d[2] * right[2]));
+        spanY = Math.max(spanY, Math.abs(d[0] * top[0] + d[1] * top[1] + d[2] * top[2]));
+    }
+    const scale = 0.46 * Math.min(width / Math.max(spanX, 1e-30), height / Math.max(spanY, 1e-30));
     const showFlipped = !!options.showFlipped;
     for (const part of parts) {
         const p = part.positions, n = p.length / 3;
