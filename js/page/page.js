@@ -20,7 +20,9 @@ function draw() {
         return;
     const before = render($('before'), current.parts, current.view, { showFlipped: true });
     const after = render($('after'), current.parts.map((p) => ({ ...p, indices: p.repaired })), current.view);
-    $('pixels').textContent = `red pixels: before ${before.red}, after ${after.red}`;
+    const hidden = before.red === 0 && current.flips > 0
+        ? ' (the flipped faces are hidden from this side or too small to see: drag to turn the model)' : '';
+    $('pixels').textContent = `red pixels: before ${before.red}, after ${after.red}${hidden}`;
     document.body.dataset.redBefore = before.red;
     document.body.dataset.redAfter = after.red;
 }
@@ -60,7 +62,7 @@ async function open(files) {
             result = await repairMeshFile(main.name, bytes);
         }
         const parts = result.parts.map((p) => ({ ...p, repaired: repairedIndices(p) }));
-        current = { parts, view: { ...frame(parts, result.up), yaw: 35, pitch: 25 } };
+        current = { parts, flips: result.flips, view: { ...frame(parts, result.up), yaw: 35, pitch: 25 } };
         draw();
         const ms = Math.round(performance.now() - started);
         $('summary').textContent = `${main.name}: ${result.summary}`;

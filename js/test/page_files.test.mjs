@@ -122,6 +122,38 @@ await test('glTF: a .glb that is not one is refused with a message', async () =>
     }
 });
 
+await test('render: a face seen from its front is grey, from behind blue (drawn, not culled), flipped red; a mirror swaps sides', async () => {
+    const { render, frame, pixelKind } = await page('render.js');
+    const canvas = { width: 64, height: 48, pixels: null };
+    canvas.getContext = () => ({
+        createImageData: (w, h) => ({ data: new Uint8ClampedArray(4 * w * h) }),
+        putImageData: (image) => (canvas.pixels = image.data),
+    });
+    // one triangle in the plane z = 0, counter-clockwise seen from +z, and its view from +z and -z
+    const part = { positions: Float32Array.of(0, 0, 0, 1, 0, 0, 0, 1, 0), indices: Uint32Array.of(0, 1, 2), flipped: Uint8Array.of(1) };
+    const kinds = (parts, pitch, showFlipped) => {
+        const counts = render(canvas, parts, { ...frame(parts, 1), yaw: 0, pitch }, { showFlipped });
+        let grey = 0;
+        for (let i = 0; i < canvas.pixels.length; i += 4)
+            grey += pixelKind(canvas.pixels[i], canvas.pixels[i + 1], canvas.pixels[i + 2]) === 'other' &&
+                canvas.pixels[i] < 250;
+        return { red: counts.red, blue: counts.blue, grey, drawn: counts.drawn };
+    };
+    // with y up, yaw 0 and pitch 0 put the eye on +z: the triangle faces it, the reversed one turns its back
+    const front = kinds([part], 0, false), back = kinds([{ ...part, indices: Uint32Array.of(0, 2, 1) }], 0, false);
+    const red = kinds([part], 0, true), mirrored = kinds([{ ...part, mirrored: true }], 0, false);
+    const problems = [];
+    if (!(front.drawn > 100 && front.grey === front.drawn && front.blue === 0))
+        problems.push(`front: ${JSON.stringify(front)}`);
+    if (!(back.drawn === front.drawn && back.blue === back.drawn))
+        problems.push(`back: ${JSON.stringify(back)}`);
+    if (!(red.red === front.drawn))
+        problems.push(`flipped: ${JSON.stringify(red)}`);
+    if (!(mirrored.blue === front.drawn))
+        problems.push(`mirrored: ${JSON.stringify(mirrored)}`);
+    return problems;
+});
+
 // ---- real files against the command-line tool ----
 if (!models || !existsSync(join(models, 'STL', 'Spider_binary.stl'))) {
     skip('the page and the CLI on assimp-testmodels', `${models} is missing (apt-get install assimp-testmodels)`);
