@@ -8,12 +8,14 @@
 // the pixels of both views and the downloaded file are checked, the file
 // byte for byte against the command-line tool's output for the same input.
 // Then an STL is picked with the file input, the same way. Writes
-// build/page-test/page.png, a screenshot of the page as a user sees it.
+// build/page-test/page.png (the engine) and page_stl.png (the STL),
+// screenshots of the page as a user sees it.
 import { execFileSync } from 'node:child_process';
 import { createServer } from 'node:http';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, statSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { basename, extname, join, normalize, resolve, sep } from 'node:path';
+import { extname, join, normalize, resolve, sep } from 'node:path';
+import { pathToFileURL } from 'node:url';
 import puppeteer from 'puppeteer-core';
 import { buildDir, failed, jsDir, report, test } from './common.mjs';
 
@@ -52,6 +54,45 @@ function scrambled(input, name) {
     const json = JSON.parse(execFileSync(cli, ['--json', file, fixed], { encoding: 'utf8' }));
     const flips = json.files[0].meshes.reduce((s, m) => s + m.flipped.faces, 0);
     return { file, fixed, flips };
+}
+
+// What the page's own modules draw under node for a file, on a canvas of
+// the page's size (the views' pixels are the same in any JavaScript engine).
+const pick = (n) => ({ red: n.red, blue: n.blue, background: n.background });
+async function nodeRender(file, name) {
+    const url = (f) => pathToFileURL(join(root, f)).href;
+    const { repairGltf } = await import(url('gltf_file.js'));
+    const { repairMeshFile } = await import(url('mesh_files.js'));
+    const { frame, render, pixelKind } = await import(url('render.js'));
+    const data = new Uint8Array(readFileSync(file));
+    const r = /\.glb$/.test(name) ? { up: 1, ...(await repairGltf(name, data)) } : await repairMeshFile(name, data);
+    const canvas = { width: 480, height: 360, pixels: null };
+    canvas.getContext = () => ({
+        createImageData: (w, h) => ({ data: new Uint8ClampedArray(4 * w * h) }),
+        putImageData: (image) => (canvas.pixels = image.data),
+    });
+    const count = () => {
+        const n = { red: 0, blue: 0, background: 0 }, d = canvas.pixels;
+        for (let i = 0; i < d.length; i += 4) {
+            const kind = pixelKind(d[i], d[i + 1], d[i + 2]);
+            n.red += kind === 'red';
+            n.blue += kind === 'blue';
+            n.background += d[i] === 255 && d[i + 1] === 255 && d[i + 2] === 255;
+        }
+        return n;
+    };
+    const view = { ...frame(r.parts, r.up), yaw: 35, pitch: 25 };
+    render(canvas, r.parts, view, { showFlipped: true });
+    const before = count();
+    const repaired = r.parts.map((p) => {
+        const indices = Uint32Array.from(p.indices);
+        for (let t = 0; t < p.flipped.length; ++t)
+            if (p.flipped[t])
+                [indices[3 * t + 1], indices[3 * t + 2]] = [p.indices[3 * t + 2], p.indices[3 * t + 1]];
+        return { ...p, indices };
+    });
+    render(canvas, repaired, view);
+    return { before, after: count() };
 }
 
 const browser = await puppeteer.launch({
@@ -161,6 +202,11 @@ try {
         report('before: the flipped faces are red (more than 5% of the model\'s pixels)',
             result.before.red > 0.05 * (result.before.pixels - result.before.background), JSON.stringify(result.before));
         report('after: no red pixel', result.after.red === 0, JSON.stringify(result.after));
+        const node = await nodeRender(glb.file, '2CylinderEngine.glb');
+        report(`the canvases hold the pixels the same renderer draws under node (red ${node.before.red} before, ` +
+            `${node.after.red} after, blue ${node.before.blue} and ${node.after.blue})`,
+            JSON.stringify(node) === JSON.stringify({ before: pick(result.before), after: pick(result.after) }),
+            `browser ${JSON.stringify([result.before, result.after])}, node ${JSON.stringify(node)}`);
         report('after: the same silhouette (as many background pixels as before)',
             result.after.background === result.before.background, `${result.before.background} and ${result.after.background}`);
         await test(`the download, ${result.download}, is byte for byte the CLI's output for the same input`, async () =>
@@ -186,6 +232,7 @@ try {
                 picked.summary.endsWith(`: ${spider.flips} of 1368 faces`), picked.summary);
             report('before red, after none', picked.before.red > 0 && picked.after.red === 0,
                 `before ${picked.before.red}, after ${picked.after.red}`);
+            await page.screenshot({ path: join(out, 'page_stl.png') });
             await test(`the download, ${picked.download}, is byte for byte the CLI's output`, async () =>
                 compare(await download(picked.download), readFileSync(spider.fixed), picked.download));
         }

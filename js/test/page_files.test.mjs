@@ -5,7 +5,7 @@
 // assimp-testmodels, scrambled (tests/cli/meshcheck.js), repaired to the
 // same bytes as the command-line tool writes.
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { buildDir, failed, jsDir, skip, test } from './common.mjs';
@@ -185,5 +185,30 @@ if (!models || !existsSync(join(models, 'STL', 'Spider_binary.stl'))) {
             return problems;
         });
     }
+    await test('a scrambled .gltf with its .bin and image dropped beside it: repaired, written by glTF-Transform as a .glb ' +
+        'with the flips the CLI makes', async () => {
+        const dir = join(out, 'gltf');
+        mkdirSync(dir, { recursive: true });
+        mkdirSync(join(out, 'cli_gltf'), { recursive: true });
+        const scrambled = join(dir, 'BoxTextured.gltf');
+        execFileSync('node', [meshcheck, 'scramble', join(models, 'glTF2/BoxTextured-glTF/BoxTextured.gltf'), scrambled, '11', '0.5']);
+        const json = JSON.parse(execFileSync(cli, ['--json', scrambled, join(out, 'cli_gltf', 'BoxTextured.gltf')],
+            { encoding: 'utf8' }));
+        const flips = json.files[0].meshes.reduce((n, m) => n + m.flipped.faces, 0);
+        const resources = new Map();
+        for (const f of readdirSync(dir))
+            if (f !== 'BoxTextured.gltf')
+                resources.set(f, new Uint8Array(readFileSync(join(dir, f))));
+        const r = await repairGltf('BoxTextured.gltf', new Uint8Array(readFileSync(scrambled)), resources);
+        const problems = [];
+        expect(problems, 'flips', r.flips, flips);
+        expect(problems, 'written in place', r.byteExact, false);
+        expect(problems, 'name', r.outputName, 'BoxTextured.fixed.glb');
+        const again = await repairGltf(r.outputName, r.output);
+        expect(problems, 'flips in the output', again.flips, 0);
+        if (flips === 0)
+            problems.push('the CLI flipped nothing');
+        return problems;
+    });
 }
 process.exit(failed() ? 1 : 0);
