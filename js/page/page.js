@@ -20,8 +20,10 @@ function draw() {
         return;
     const before = render($('before'), current.parts, current.view, { showFlipped: true });
     const after = render($('after'), current.parts.map((p) => ({ ...p, indices: p.repaired })), current.view);
-    const hidden = before.red === 0 && current.flips > 0
-        ? ' (the flipped faces are hidden from this side or too small to see: drag to turn the model)' : '';
+    const hidden = before.rings > 0
+        ? ` (${before.faceRed === 0 ? 'the flipped faces are hidden from this side' : 'the flipped faces are small'}: ` +
+          `${before.rings} red ring${before.rings === 1 ? '' : 's'} mark${before.rings === 1 ? 's' : ''} where; drag to turn the model)`
+        : '';
     $('pixels').textContent = `red pixels: before ${before.red}, after ${after.red}${hidden}`;
     document.body.dataset.redBefore = before.red;
     document.body.dataset.redAfter = after.red;

@@ -56,7 +56,10 @@ function basis(up, yawDeg, pitchDeg) {
 }
 
 // Draws `parts` ({ positions, indices, flipped, mirrored }) into the canvas.
-// Returns the pixel counts { red, blue, drawn }.
+// With showFlipped, flipped faces are red, and when they cover fewer than
+// RING_BELOW pixels (a small repair, or faces hidden from this side) each
+// group of them gets a red ring too. Returns the pixel counts { red, blue,
+// drawn } (red with the rings), faceRed (without) and rings.
 export function render(canvas, parts, view, options = {}) {
     const width = canvas.width, height = canvas.height;
     const context = canvas.getContext('2d');
@@ -80,6 +83,11 @@ export function render(canvas, parts, view, options = {}) {
     }
     const scale = 0.46 * Math.min(width / Math.max(spanX, 1e-30), height / Math.max(spanY, 1e-30));
     const showFlipped = !!options.showFlipped;
+    const project = (x, y, z) => {
+        x -= cx, y -= cy, z -= cz;
+        return [width / 2 + scale * (x * right[0] + y * right[1] + z * right[2]),
+            height / 2 - scale * (x * top[0] + y * top[1] + z * top[2])];
+    };
     for (const part of parts) {
         const p = part.positions, n = p.length / 3;
         const sx = new Float32Array(n), sy = new Float32Array(n), sz = new Float32Array(n);
@@ -133,15 +141,61 @@ export function render(canvas, parts, view, options = {}) {
             }
         }
     }
-    context.putImageData(image, 0, 0);
     let red = 0, blue = 0, drawn = 0;
-    for (let i = 0; i < width * height; ++i) {
-        if (depth[i] === -Infinity)
+    const count = () => {
+        red = blue = drawn = 0;
+        for (let i = 0; i < width * height; ++i) {
+            drawn += depth[i] !== -Infinity;
+            const kind = pixelKind(pixels[4 * i], pixels[4 * i + 1], pixels[4 * i + 2]);
+            red += kind === 'red';
+            blue += kind === 'blue';
+        }
+    };
+    count();
+    // flipped faces too small (or too hidden) to see: a red ring where each group of them is
+    const faceRed = red;
+    let rings = 0;
+    if (showFlipped && red < RING_BELOW)
+        rings = ringFlipped(parts, pixels, width, height, project);
+    context.putImageData(image, 0, 0);
+    if (rings === 0)
+        return { red, blue, drawn, faceRed, rings };
+    count();
+    return { red, blue, drawn, faceRed, rings };
+}
+
+const RING_BELOW = 400; // red pixels of flipped faces below which they are ringed
+const RING_RADIUS = 11;
+
+// Rings (at most 64, none within a ring's diameter of another) around the
+// flipped triangles' centres on screen; returns how many.
+function ringFlipped(parts, pixels, width, height, project) {
+    const centres = [];
+    for (const part of parts) {
+        if (!part.flipped)
             continue;
-        drawn++;
-        const kind = pixelKind(pixels[4 * i], pixels[4 * i + 1], pixels[4 * i + 2]);
-        red += kind === 'red';
-        blue += kind === 'blue';
+        const p = part.positions, idx = part.indices;
+        for (let t = 0; 3 * t + 2 < idx.length && centres.length < 64; ++t) {
+            if (!part.flipped[t])
+                continue;
+            const c = [0, 1, 2].map((k) => (p[3 * idx[3 * t] + k] + p[3 * idx[3 * t + 1] + k] + p[3 * idx[3 * t + 2] + k]) / 3);
+            const [x, y] = project(c[0], c[1], c[2]);
+            if (Number.isFinite(x) && Number.isFinite(y) && !centres.some(([u, v]) => Math.hypot(u - x, v - y) < 2 * RING_RADIUS))
+                centres.push([x, y]);
+        }
     }
-    return { red, blue, drawn };
+    for (const [x, y] of centres)
+        for (let py = Math.floor(y - RING_RADIUS - 2); py <= y + RING_RADIUS + 2; ++py)
+            for (let px = Math.floor(x - RING_RADIUS - 2); px <= x + RING_RADIUS + 2; ++px) {
+                if (px < 0 || py < 0 || px >= width || py >= height)
+                    continue;
+                const d = Math.hypot(px + 0.5 - x, py + 0.5 - y);
+                if (d < RING_RADIUS - 1 || d > RING_RADIUS + 1)
+                    continue;
+                const at = 4 * (py * width + px);
+                pixels[at] = COLOURS.flipped[0];
+                pixels[at + 1] = COLOURS.flipped[1];
+                pixels[at + 2] = COLOURS.flipped[2];
+            }
+    return centres.length;
 }

@@ -122,7 +122,7 @@ await test('glTF: a .glb that is not one is refused with a message', async () =>
     }
 });
 
-await test('render: a face seen from its front is grey, from behind blue (drawn, not culled), flipped red; a mirror swaps sides', async () => {
+await test('render: a face seen from its front is grey, from behind blue (drawn, not culled), flipped red and, when small, ringed; a mirror swaps sides', async () => {
     const { render, frame, pixelKind } = await page('render.js');
     const canvas = { width: 64, height: 48, pixels: null };
     canvas.getContext = () => ({
@@ -137,7 +137,7 @@ await test('render: a face seen from its front is grey, from behind blue (drawn,
         for (let i = 0; i < canvas.pixels.length; i += 4)
             grey += pixelKind(canvas.pixels[i], canvas.pixels[i + 1], canvas.pixels[i + 2]) === 'other' &&
                 canvas.pixels[i] < 250;
-        return { red: counts.red, blue: counts.blue, grey, drawn: counts.drawn };
+        return { red: counts.red, faceRed: counts.faceRed, rings: counts.rings, blue: counts.blue, grey, drawn: counts.drawn };
     };
     // with y up, yaw 0 and pitch 0 put the eye on +z: the triangle faces it, the reversed one turns its back
     const front = kinds([part], 0, false), back = kinds([{ ...part, indices: Uint32Array.of(0, 2, 1) }], 0, false);
@@ -147,8 +147,13 @@ await test('render: a face seen from its front is grey, from behind blue (drawn,
         problems.push(`front: ${JSON.stringify(front)}`);
     if (!(back.drawn === front.drawn && back.blue === back.drawn))
         problems.push(`back: ${JSON.stringify(back)}`);
-    if (!(red.red === front.drawn))
+    if (!(red.faceRed === front.drawn && red.red === red.faceRed && red.rings === 0))
         problems.push(`flipped: ${JSON.stringify(red)}`);
+    // drawn small (under 400 pixels), a flipped face is ringed as well
+    Object.assign(canvas, { width: 24, height: 18 });
+    const small = kinds([part], 0, true);
+    if (!(small.faceRed === small.drawn && small.drawn > 0 && small.rings === 1 && small.red > small.faceRed))
+        problems.push(`small and flipped: ${JSON.stringify(small)}`);
     if (!(mirrored.blue === front.drawn))
         problems.push(`mirrored: ${JSON.stringify(mirrored)}`);
     return problems;
