@@ -175,10 +175,17 @@ sdf-demo: $(B)/sdf_demo
 BLENDER_ADDON = blender/__init__.py blender/repair.py blender/build.sh python/build.sh python/meshfix/__init__.py \
                 python/meshfix/_native.c meshfix.h
 
+# The browser page (js/page/): meshfix.h as WebAssembly and glTF-Transform's
+# core vendored from js/node_modules, into build/page; needs node, npm, emcc.
+page:
+	@cd js && { [ -f node_modules/@gltf-transform/core/package.json ] || npm ci --no-audit --no-fund; } && \
+		node scripts/build.mjs --if-stale && node scripts/page.mjs ../$(B)/page
+	@echo "open it: python3 -m http.server -b 127.0.0.1 -d $(B)/page 8000, then http://127.0.0.1:8000/"
+
 blender-addon: $(B)/meshfix_blender.zip
 
 $(B)/meshfix_blender.zip: $(BLENDER_ADDON) | $(B)
 	sh blender/build.sh $@
 
-.PHONY: all demo sdf-demo blender-addon test test-only quick bench fuzz clean FORCE
+.PHONY: all demo sdf-demo blender-addon page test test-only quick bench fuzz clean FORCE
 FORCE:
