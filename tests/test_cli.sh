@@ -537,6 +537,38 @@ elif ! png_supported; then
 else
     echo "skip --mark FILE.png pictures (no python3 to read them)"
 fi
+# ---- --mark FILE.ply in Blender ----
+# Blender 3.4's PLY importer drops face colours: the mark carries vertex
+# colours too, a vertex copied where faces of different colours share it.
+# Debian's Blender imports it headless (tests/cli/blender_mark.py); the
+# faces it shows red must be exactly the ones turned (tests/cli/turn_faces.py).
+
+blender_mark() { # DIR IN.obj FACE...: turns the faces, repairs with --mark, imports the mark in Blender
+    local d=$1 in=$2
+    shift 2
+    mkdir -p "$d"
+    python3 tests/cli/turn_faces.py "$in" "$d/turned.obj" "$d/expected.txt" "$@" || return 1
+    $MESHFIX --quiet "$d/turned.obj" "$d/fixed.obj" --mark "$d/mark.ply" || return 1
+    blender -b --factory-startup --python-exit-code 1 --python tests/cli/blender_mark.py -- "$d/mark.ply" "$d/got.txt" \
+        >"$d/blender.log" 2>&1 || { tail -n 20 "$d/blender.log"; return 1; }
+    cat "$d/got.txt" | grep -v '^red\|^amber'
+    grep -q '^colour [^ ]* CORNER\|^colour [^ ]* POINT' "$d/got.txt" || { echo "no colour attribute imported"; return 1; }
+    grep -q '^mixed 0$' "$d/got.txt" || { echo "faces of more than one colour"; return 1; }
+    ! grep -q '^amber' "$d/got.txt" || { echo "amber faces"; return 1; }
+    grep '^red' "$d/got.txt" | sort | diff - "$d/expected.txt" || { echo "(< red in Blender, > turned)"; return 1; }
+}
+if ! command -v blender >/dev/null 2>&1; then
+    echo "SKIP --mark FILE.ply in Blender: blender is not installed (apt-get install blender)"
+elif ! command -v python3 >/dev/null 2>&1; then
+    echo "SKIP --mark FILE.ply in Blender: no python3 to write the input (apt-get install python3)"
+else
+    mkdir -p "$tmp/bl"
+    python3 "$tmp/meshes.py" "$tmp/bl"
+    check "--mark FILE.ply in Blender: a cube with one triangle turned, its corners shared: exactly it red" \
+        blender_mark "$tmp/bl/one" "$tmp/bl/cube.obj" 5
+    check "--mark FILE.ply in Blender: two triangles of a cube's face and one of the next: exactly they red" \
+        blender_mark "$tmp/bl/three" "$tmp/bl/cube.obj" 0 1 4
+fi
 check "--mark FILE.jpg: exit 1, one line naming .ply and .png" one_line_error 1 "give a .ply or .png file" \
     $MESHFIX --quiet "$tmp/demo.obj" "$tmp/x.obj" --mark "$tmp/x.jpg"
 check "--mark-format png with --mark FILE.ply: exit 1, one line" one_line_error 1 "mark-format png" \

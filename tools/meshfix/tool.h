@@ -200,7 +200,8 @@ enum class Mark { kept, flipped, doubtful, none /* in no patch: degenerate, or i
 Mark mark_of(const Unit &unit, const UnitResult &result, size_t triangle);
 /* Whether triangle t is written turned over (its face flipped). */
 bool written_flipped(const Unit &unit, const UnitResult &result, size_t triangle);
-/* The PLY's colour of a kept triangle's patch (a hash of its number). */
+/* The PLY's colour of a kept triangle's patch (a hash of its number): a
+   pale green of some hue, never red, amber or blue. */
 void patch_tint(unsigned int patch, unsigned char rgb[3]);
 
 /* ---- the --mark picture (render.cpp) ---- */
