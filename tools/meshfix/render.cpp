@@ -904,7 +904,7 @@ void picture_up(const MeshFile &file, float up[3], std::string &why)
     std::string format = file.format();
     if (is_gltf_format(format) || format == "obj")
         up[1] = 1.0f, up[2] = 0.0f;
-    why = format == "obj" ? "OBJ, exporters' convention" : is_gltf_format(format) ? "glTF" : format == "stl" ? "STL" : format == "ply" ? "PLY" : "OFF";
+    why = format == "obj" ? "OBJ" : is_gltf_format(format) ? "glTF" : format == "stl" ? "STL" : format == "ply" ? "PLY" : "OFF";
     if (format != "obj")
         return;
     /* the mesh's extent, then its area and the level area at its lowest y and z */
@@ -932,7 +932,7 @@ void picture_up(const MeshFile &file, float up[3], std::string &why)
     if (!(size > 0.0) || !std::isfinite(size))
         return;
     if (std::fabs(lo[2]) <= 0.005 * size && std::fabs(lo[1]) > 0.05 * size) {
-        up[1] = 0.0f, up[2] = 1.0f, why = "OBJ, standing on z = 0";
+        up[1] = 0.0f, up[2] = 1.0f, why = "OBJ standing on z = 0";
         return;
     }
     double area = 0.0, base[3] = {0.0, 0.0, 0.0};
@@ -950,7 +950,7 @@ void picture_up(const MeshFile &file, float up[3], std::string &why)
         }
     });
     if (base[2] >= 0.01 * area && base[2] >= 3.0 * base[1])
-        up[1] = 0.0f, up[2] = 1.0f, why = "OBJ, its flat base at its lowest z";
+        up[1] = 0.0f, up[2] = 1.0f, why = "OBJ with a flat base at its lowest z";
 }
 
 bool write_picture(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
@@ -982,7 +982,7 @@ bool write_picture(const std::string &path, const MeshFile &file, const std::vec
         canvas.text(x + swatch + 8, y, fit(legend[(size_t)k], (size_t)(width - x - swatch - 8 - margin) / advance), ink);
     }
     const char *const headers[2] = {"before: the input as read, faces seen from behind culled (as a renderer draws it)",
-                                    "after: as written, the repair marked"};
+                                    words.inspect ? "after: as a repair would write it, marked" : "after: as written, the repair marked"};
     for (int b = 0; b < 2; ++b)
         canvas.text(layout.block_x[b], layout.block_y[b] + 6, fit(headers[b], (size_t)layout.block_w / advance), ink);
     for (size_t k = 0; k < 4; ++k) {

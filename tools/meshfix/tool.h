@@ -223,7 +223,7 @@ struct PictureText {
    y more than 5% away), or its flat base is at its lowest z (faces within
    1% of its size of the lowest z and within 25 degrees of level: 1% of
    its area or more, and 3 times what lies so at its lowest y). `why` is
-   the reason in a few words ("OBJ, standing on z = 0"). */
+   the reason in a few words ("OBJ standing on z = 0"). */
 void picture_up(const MeshFile &file, float up[3], std::string &why);
 
 /* Draws every unit twice, in four views each, front, back, top and
