@@ -24,7 +24,8 @@ has clang || need+=(clang)
 [ -f /usr/share/opencascade/data/stl/motor.stl ] || need+=(occt-misc)
 # the Draco engine of assimp-testmodels exported to OBJ and STL (tests/test_cli_files.sh)
 has assimp || need+=(assimp-utils)
-# the Blender add-on, in Debian's Blender in background mode (blender/test.sh)
+# the Blender add-on, in Debian's Blender in background mode (blender/test.sh),
+# and the --mark PLY imported in it (tests/test_cli.sh, tests/test_cli_files.sh)
 has blender || need+=(blender)
 # the command-line tool's glTF (the Makefile builds it without when these
 # are missing, and its glTF tests would fail); they run the Khronos

@@ -263,11 +263,13 @@ fi
 
 # ---- --mark FILE.png: the picture, checked by its pixels ----
 
-# meshes.py writes the OBJ files; png_check.py reads a PNG (zlib, the five
-# filters) and checks its pixels against what the geometry says: where each
-# view puts a point comes from the picture's tEXt chunk "meshfix views"
-# (NAME X Y W H OX OY S RX RY RZ UX UY UZ: pixel = (OX + S p.R, OY - S p.U)),
-# whose axes are checked against what front, back and top must be for z up.
+# meshes.py writes the test meshes, OFF (z up by the format's convention)
+# and OBJ; tests/cli/png_check.py reads a PNG (zlib, the five filters) and
+# checks its pixels against what the geometry says: where each view puts a
+# point comes from the picture's tEXt chunk "meshfix views" (NAME X Y W H
+# OX OY S RX RY RZ UX UY UZ: pixel = (OX + S p.R, OY - S p.U)), whose axes
+# are checked against what front, back and top must be for the up axis;
+# words are read back from the pixels in the tool's font.
 cat >"$tmp/meshes.py" <<'EOF'
 import sys
 def box(lo, hi, inside_out=False):
@@ -284,205 +286,71 @@ def sheet(nx, ny, x1, y1, down):  # [0, x1] x [0, y1] at z = 0, facing -z when d
             for t in ((a, a + 1, a + nx + 2), (a, a + nx + 2, a + nx + 1)):
                 f.append((t[0], t[2], t[1]) if down else t)
     return v, f
+def fine_cube(n, turned):  # [0, 1]^3, n x n squares a side, facing out; the triangles `turned` of its -y side reversed
+    v, f, at = [], [], {}
+    def vertex(p):
+        if p not in at:
+            at[p] = len(v)
+            v.append(p)
+        return at[p]
+    sides = [((0, 0, 0), (1, 0, 0), (0, 0, 1)), ((0, 1, 0), (0, 0, 1), (1, 0, 0)), ((0, 0, 0), (0, 0, 1), (0, 1, 0)),
+             ((1, 0, 0), (0, 1, 0), (0, 0, 1)), ((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 1), (1, 0, 0), (0, 1, 0))]
+    for o, u, w in sides:  # u x w points out
+        p = lambda i, j: vertex(tuple(o[k] + u[k] * i / n + w[k] * j / n for k in range(3)))
+        for j in range(n):
+            for i in range(n):
+                for t in ((p(i, j), p(i + 1, j), p(i + 1, j + 1)), (p(i, j), p(i + 1, j + 1), p(i, j + 1))):
+                    f.append((t[0], t[2], t[1]) if len(f) in turned else t)
+    return v, f
+def slab(lift, y_up):  # an L, [-1.5, 1.5] x [-1.5, -0.5] and [-1.5, -0.5] x [-0.5, 1.5], 0.25 high from z = lift
+    ring = [(-1.5, -1.5), (1.5, -1.5), (1.5, -0.5), (-0.5, -0.5), (-0.5, 1.5), (-1.5, 1.5)]  # counter-clockwise
+    v = [(x, y, lift + h) for h in (0.0, 0.25) for x, y in ring]
+    f = [tuple(range(5, -1, -1)), tuple(range(6, 12))] + [(k, (k + 1) % 6, (k + 1) % 6 + 6, k + 6) for k in range(6)]
+    return [(x, z, -y) for x, y, z in v] if y_up else v, f  # y up: the same solid turned, z to y
 def write(path, parts):
+    off = path.endswith(".off")
     with open(path, "w") as out:
+        if off:
+            out.write("OFF\n%d %d 0\n" % (sum(len(v) for v, _ in parts), sum(len(f) for _, f in parts)))
+        for v, f in parts:
+            out.writelines(("%r %r %r\n" if off else "v %r %r %r\n") % p for p in v)
         base = 0
         for v, f in parts:
-            out.writelines("v %r %r %r\n" % p for p in v)
-            out.writelines("f %d %d %d\n" % tuple(base + i + 1 for i in t) for t in f)
+            if off:
+                out.writelines("%d %s\n" % (len(t), " ".join(str(base + i) for i in t)) for t in f)
+            else:
+                out.writelines("f %s\n" % " ".join(str(base + i + 1) for i in t) for t in f)
             base += len(v)
 d = sys.argv[1]
-write(d + "/cubes.obj", [box((0, 0, 0), (1, 1, 1), True), box((2, 0, 0), (3, 1, 1))])  # the left one inside out
-write(d + "/cube.obj", [box((0, 0, 0), (1, 1, 1))])
-write(d + "/sheet_down.obj", [sheet(4, 4, 2, 1, True)])
-write(d + "/sheet_up.obj", [sheet(4, 4, 2, 1, False)])
-EOF
-
-cat >"$tmp/png_check.py" <<'EOF'
-import struct, sys, zlib
-
-def read_png(path):
-    data = open(path, "rb").read()
-    if data[:8] != b"\x89PNG\r\n\x1a\n":
-        sys.exit("not a PNG")
-    at, idat, text = 8, b"", {}
-    while at < len(data):
-        n, kind = struct.unpack(">I4s", data[at:at + 8])
-        body = data[at + 8:at + 8 + n]
-        at += 12 + n
-        if kind == b"IHDR":
-            w, h, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
-            if (depth, colour, interlace) != (8, 2, 0):
-                sys.exit("expected 8-bit RGB, not interlaced")
-        elif kind == b"IDAT":
-            idat += body
-        elif kind == b"tEXt":
-            key, value = body.split(b"\0", 1)
-            text[key.decode("latin-1")] = value.decode("latin-1")
-    raw, stride, rows = zlib.decompress(idat), 3 * w, []
-    prev = bytearray(stride)
-    for y in range(h):
-        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for x in range(stride):
-            a = line[x - 3] if x >= 3 else 0
-            b, c = prev[x], prev[x - 3] if x >= 3 else 0
-            if kind == 1:
-                line[x] = (line[x] + a) & 255
-            elif kind == 2:
-                line[x] = (line[x] + b) & 255
-            elif kind == 3:
-                line[x] = (line[x] + (a + b) // 2) & 255
-            elif kind == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(line)
-        prev = line
-    return w, h, rows, text
-
-def kind(px):
-    r, g, b = px
-    if r >= 60 and r > 2.5 * g and r > 2.5 * b:
-        return "red"
-    if r >= 60 and 0.45 * r <= g <= 0.85 * r and b <= 0.3 * r:
-        return "amber"
-    if b >= 40 and b > 2 * r and b > 2 * g:
-        return "blue"
-    if 30 <= max(px) <= 225 and max(px) - min(px) <= 0.35 * max(px):
-        return "grey"  # kept faces (and text, which no region checked here holds)
-    return None
-
-path, test = sys.argv[1], sys.argv[2]
-w, h, rows, text = read_png(path)
-if test == "same":  # png_check.py A same B: the same pixels (whatever zlib made of them)
-    w2, h2, rows2, _ = read_png(sys.argv[3])
-    if (w, h) != (w2, h2):
-        sys.exit("%dx%d, not %dx%d" % (w, h, w2, h2))
-    differ = sum(1 for a, b in zip(rows, rows2) for x in range(0, 3 * w, 3) if a[x:x + 3] != b[x:x + 3])
-    sys.exit("%d pixels differ" % differ if differ else 0)
-pixel = lambda x, y: tuple(rows[y][3 * x:3 * x + 3])
-views = {}
-for line in text.get("meshfix views", "").splitlines():
-    f = line.split()
-    views[f[0]] = dict(rect=tuple(map(int, f[1:5])), o=(float(f[5]), float(f[6])), s=float(f[7]),
-                       R=tuple(map(float, f[8:11])), U=tuple(map(float, f[11:14])))
-if sorted(views) != ["back", "front", "oblique", "top"]:
-    sys.exit("views in the tEXt chunk: %s" % sorted(views))
-axes = {"front": ((1, 0, 0), (0, 0, 1)), "back": ((-1, 0, 0), (0, 0, 1)), "top": ((1, 0, 0), (0, 1, 0))}
-for name, (R, U) in axes.items():
-    if views[name]["R"] != R or views[name]["U"] != U:
-        sys.exit("%s view: axes %s %s, expected %s %s" % (name, views[name]["R"], views[name]["U"], R, U))
-
-def project(v, p):
-    dot = lambda a: sum(x * y for x, y in zip(p, a))
-    return v["o"][0] + v["s"] * dot(v["R"]), v["o"][1] - v["s"] * dot(v["U"])
-
-def region(v, points, grow):
-    """The pixels whose centres are inside the convex hull of the points'
-    projections grown by `grow` pixels (shrunk when negative)."""
-    xy = sorted(set(project(v, p) for p in points))
-    cross = lambda o, a, b: (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-    hull = []
-    for seq in (xy, xy[::-1]):  # Andrew's monotone chain: lower, then upper
-        part = []
-        for q in seq:
-            while len(part) >= 2 and cross(part[-2], part[-1], q) <= 0:
-                part.pop()
-            part.append(q)
-        hull += part[:-1]
-    edges = []
-    for a, b in zip(hull, hull[1:] + hull[:1]):  # counter-clockwise (y down): inside is where cross > 0
-        n = ((b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2) ** 0.5
-        edges.append((a, b, n))
-    x0, x1 = min(x for x, _ in xy) - abs(grow) - 1, max(x for x, _ in xy) + abs(grow) + 1
-    y0, y1 = min(y for _, y in xy) - abs(grow) - 1, max(y for _, y in xy) + abs(grow) + 1
-    out = []
-    for y in range(max(0, int(y0)), min(h, int(y1) + 1)):
-        for x in range(max(0, int(x0)), min(w, int(x1) + 1)):
-            c = (x + 0.5, y + 0.5)
-            if all(cross(a, b, c) / n >= -grow for a, b, n in edges):
-                out.append((x, y))
-    return out
-
-def count(pixels, k):
-    return sum(1 for x, y in pixels if kind(pixel(x, y)) == k)
-
-def in_view(v):
-    x, y, vw, vh = v["rect"]
-    return [(i, j) for j in range(y, y + vh) for i in range(x, x + vw)]
-
-def corners(lo, hi):
-    return [(x, y, z) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
-
-failures = []
-def expect(ok, what):
-    if not ok:
-        failures.append(what)
-
-legend = {"red": (12, 40, (230, 30, 30)), "amber": (12, 66, (255, 176, 0)), "blue": (330, 40, (80, 60, 220)),
-          "grey": (330, 66, (190, 190, 190))}
-swatch = lambda k: [(x, y) for y in range(legend[k][1], legend[k][1] + 18) for x in range(legend[k][0], legend[k][0] + 18)]
-
-if test == "legend":  # each swatch its exact colour, its words (dark pixels) after it
-    for k, (x0, y0, colour) in legend.items():
-        off = [(x, y) for x, y in swatch(k) if pixel(x, y) != colour]
-        expect(not off, "%s swatch at (%d, %d): %d pixels not %s" % (k, x0, y0, len(off), colour))
-        ink = sum(1 for y in range(y0, y0 + 18) for x in range(x0 + 26, x0 + 146) if max(pixel(x, y)) < 100)
-        expect(ink > 100, "%s swatch: no words after it (%d dark pixels)" % (k, ink))
-elif test == "cubes":  # the left cube flipped: red where it projects, in every view, and nowhere else
-    left, right = corners((0, 0, 0), (1, 1, 1)), corners((2, 0, 0), (3, 1, 1))
-    for name, v in views.items():
-        inner, outer = region(v, left, -3), set(region(v, left, 2))
-        other = region(v, right, -3)
-        red = count(inner, "red")
-        expect(red >= 0.95 * len(inner), "%s view: %d of %d pixels red where the flipped cube is" % (name, red, len(inner)))
-        stray = [p for p in in_view(v) if p not in outer and kind(pixel(*p)) == "red"]
-        expect(not stray, "%s view: %d red pixels away from the flipped cube, e.g. %s" % (name, len(stray), stray[:3]))
-        grey = count(other, "grey")
-        expect(grey >= 0.95 * len(other), "%s view: %d of %d pixels grey where the kept cube is" % (name, grey, len(other)))
-        blue = count(in_view(v), "blue")
-        expect(blue == 0, "%s view: %d back-face pixels on closed cubes facing out" % (name, blue))
-    # front and back see the cubes from opposite sides: left and right swap
-    fx = project(views["front"], (0.5, 0, 0.5))[0] - views["front"]["rect"][0]
-    bx = project(views["back"], (0.5, 1, 0.5))[0] - views["back"]["rect"][0]
-    expect(fx < views["front"]["rect"][2] / 2 < bx, "the flipped cube not left in front and right in back (%g, %g)" % (fx, bx))
-elif test == "clean":  # nothing flipped: no red (or blue) pixel but the legend's
-    for k in ("red", "blue", "amber"):
-        keep = set(swatch(k))
-        n = sum(1 for y in range(h) for x in range(w) if (x, y) not in keep and kind(pixel(x, y)) == k)
-        expect(n == 0, "%d %s pixels outside the legend" % (n, k))
-    for name, v in views.items():
-        expect(count(in_view(v), "grey") > 100, "%s view: the cube is not drawn" % name)
-elif test in ("sheet_down", "sheet_up"):  # an open sheet at z = 0, seen from above by top and oblique
-    sheet = corners((0, 0, 0), (2, 1, 0))
-    top = region(views["top"], sheet, -3)
-    if test == "sheet_down":
-        blue = count(top, "blue")
-        expect(blue >= 0.95 * len(top), "top view: %d of %d pixels blue on a sheet facing down" % (blue, len(top)))
-        expect(count(in_view(views["oblique"]), "blue") > 1000, "oblique view: the sheet's back is not blue")
-    else:
-        grey = count(top, "grey")
-        expect(grey >= 0.95 * len(top), "top view: %d of %d pixels grey on a sheet facing up" % (grey, len(top)))
-        for name, v in views.items():
-            expect(count(in_view(v), "blue") == 0, "%s view: back-face pixels on a sheet facing the camera" % name)
-else:
-    sys.exit("unknown test " + test)
-for f in failures:
-    print(f)
-sys.exit(1 if failures else 0)
+for ext in ("off", "obj"):
+    write(d + "/cubes." + ext, [box((0, 0, 0), (1, 1, 1), True), box((2, 0, 0), (3, 1, 1))])  # the left one inside out
+    write(d + "/cube." + ext, [box((0, 0, 0), (1, 1, 1))])
+write(d + "/sheet_down.off", [sheet(4, 4, 2, 1, True)])
+write(d + "/sheet_up.off", [sheet(4, 4, 2, 1, False)])
+n = 80  # three triangles turned at the middle of the -y side, around (0.5, 0, 0.5)
+middle = 2 * (n * (n // 2) + n // 2)
+write(d + "/fine_cube.off", [fine_cube(n, {middle, middle + 1, middle + 2})])
+write(d + "/slab_y.obj", [slab(0.0, True)])       # y up, standing on y = 0
+write(d + "/slab_z.obj", [slab(0.0, False)])      # z up, standing on z = 0
+write(d + "/slab_zc.obj", [slab(-0.125, False)])  # z up, centred: only its flat base says so
 EOF
 
 png_supported() { $MESHFIX --version | grep -q 'PNG marks'; }
+PNG_CHECK="python3 tests/cli/png_check.py"
 
-picture() { # test mesh [options]: repairs $tmp/png/MESH.obj with --mark MESH.png, checks the picture (png_check.py TEST)
-    local test=$1 mesh=$2
+picture() { # test mesh.ext [options]: repairs $tmp/png/MESH.EXT with --mark MESH.EXT.png, checks the picture (png_check.py TEST)
+    local test=$1 mesh=$2 args=()
     shift 2
-    $MESHFIX --quiet "$@" "$tmp/png/$mesh.obj" "$tmp/png/$mesh.out.obj" --mark "$tmp/png/$mesh.png" || { echo "status $?"; return 1; }
-    python3 "$tmp/png_check.py" "$tmp/png/$mesh.png" "$test"
+    while [ $# -gt 0 ] && [ "$1" != -- ]; do args+=("$1"); shift; done
+    [ $# -gt 0 ] && shift # the png_check.py arguments follow --
+    local out=("$tmp/png/out.$mesh")
+    case " ${args[*]-} " in *" --inspect "*) out=() ;; esac # --inspect writes nothing but the mark
+    $MESHFIX --quiet "${args[@]}" "$tmp/png/$mesh" "${out[@]}" --mark "$tmp/png/$mesh.png" || { echo "status $?"; return 1; }
+    $PNG_CHECK "$tmp/png/$mesh.png" "$test" "$@"
 }
 
 flipped_report() { # mesh count: the report says that many triangles were flipped
-    $MESHFIX --inspect "$tmp/png/$1.obj" | grep -q "would flip $2 of" || { $MESHFIX --inspect "$tmp/png/$1.obj" | tail -3; return 1; }
+    $MESHFIX --inspect "$tmp/png/$1" | grep -q "would flip $2 of" || { $MESHFIX --inspect "$tmp/png/$1" | tail -3; return 1; }
 }
 
 png_deterministic() {
@@ -494,17 +362,17 @@ png_docs() { # README's picture is what `make demo` draws now
     mkdir -p "$tmp/png/demo"
     cp "$tmp/demo.obj" "$tmp/png/demo/demo_input.obj"
     $MESHFIX --quiet "$tmp/png/demo/demo_input.obj" "$tmp/png/demo/fixed.obj" --mark "$tmp/png/demo/marked.png" &&
-        python3 "$tmp/png_check.py" "$tmp/png/demo/marked.png" same docs/demo_marked.png ||
+        $PNG_CHECK "$tmp/png/demo/marked.png" same docs/demo_marked.png --up y ||
         { echo "(after a change to the picture: make demo && cp build/demo_marked.png docs/)"; return 1; }
 }
 
 png_batch() { # --mark DIR --mark-format png: one picture per input; without it, PLY as before
     mkdir -p "$tmp/png/marks" "$tmp/png/plys"
-    $MESHFIX --quiet "$tmp/png/cube.obj" "$tmp/png/cubes.obj" -o "$tmp/png/out" --mark "$tmp/png/marks" --mark-format png &&
-        $MESHFIX --quiet "$tmp/png/cube.obj" "$tmp/png/cubes.obj" -o "$tmp/png/out" --mark "$tmp/png/plys" || return 1
-    [ "$(cd "$tmp/png/marks" && ls)" = "$(printf 'cube.obj.png\ncubes.obj.png')" ] || { ls "$tmp/png/marks"; return 1; }
-    [ "$(cd "$tmp/png/plys" && ls)" = "$(printf 'cube.obj.ply\ncubes.obj.ply')" ] || { ls "$tmp/png/plys"; return 1; }
-    python3 "$tmp/png_check.py" "$tmp/png/marks/cubes.obj.png" cubes && head -c 3 "$tmp/png/plys/cube.obj.ply" | grep -q ply
+    $MESHFIX --quiet "$tmp/png/cube.off" "$tmp/png/cubes.off" -o "$tmp/png/out" --mark "$tmp/png/marks" --mark-format png &&
+        $MESHFIX --quiet "$tmp/png/cube.off" "$tmp/png/cubes.off" -o "$tmp/png/out" --mark "$tmp/png/plys" || return 1
+    [ "$(cd "$tmp/png/marks" && ls)" = "$(printf 'cube.off.png\ncubes.off.png')" ] || { ls "$tmp/png/marks"; return 1; }
+    [ "$(cd "$tmp/png/plys" && ls)" = "$(printf 'cube.off.ply\ncubes.off.ply')" ] || { ls "$tmp/png/plys"; return 1; }
+    $PNG_CHECK "$tmp/png/marks/cubes.off.png" cubes && head -c 3 "$tmp/png/plys/cube.off.ply" | grep -q ply
 }
 
 png_unwritable() { # all or nothing: a picture that cannot be written leaves the output unwritten
@@ -516,26 +384,104 @@ png_unwritable() { # all or nothing: a picture that cannot be written leaves the
     no_temporaries "$tmp/png/w"
 }
 
+slab_same() { # A B: the L slab of A and of B drawn alike, B's up (picture_up) found from the mesh
+    picture slab "$2" -- --up "$3" && $PNG_CHECK "$tmp/png/$1.png" same_views "$tmp/png/$2.png" --up y
+}
+
+png_formats() { # the cubes, repaired, written as PLY and STL: z up by convention, as the OFF
+    local ext
+    for ext in ply stl; do
+        $MESHFIX --quiet "$tmp/png/cubes.off" "$tmp/png/cubes.$ext" || return 1
+        picture clean "cubes.$ext" && $PNG_CHECK "$tmp/png/cubes.$ext.png" title "up +z (${ext^^})" || { echo "($ext)"; return 1; }
+    done
+}
+
+png_gltf() { # glTF: y up by convention
+    local glb=/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb
+    $MESHFIX --quiet --inspect "$glb" --mark "$tmp/png/box.glb.png" &&
+        $PNG_CHECK "$tmp/png/box.glb.png" title "up +y (glTF)" --up y
+}
+
 if command -v python3 >/dev/null 2>&1 && png_supported; then
     mkdir -p "$tmp/png"
     python3 "$tmp/meshes.py" "$tmp/png"
-    check "--mark FILE.png: the legend's swatches in their colours at their places, words after them" \
-        picture legend cubes
-    check "--mark FILE.png: the report flips the inside-out cube of two (12 triangles)" flipped_report cubes 12
-    check "--mark FILE.png: red exactly where the flipped cube projects in each view, grey on the kept one" \
-        picture cubes cubes
-    check "--mark FILE.png: a cube with nothing flipped has no red, amber or back-face pixel" picture clean cube
-    check "--mark FILE.png: an open sheet facing down is back-face blue from above (policy seed keeps it)" \
-        picture sheet_down sheet_down --policy seed
-    check "--mark FILE.png: the same sheet facing up has no back-face pixel" picture sheet_up sheet_up --policy seed
+    check "--mark FILE.png: the legend's swatches in their colours at their places, their counts read back from the pixels" \
+        picture legend cubes.off -- "flipped: 12 triangles" "doubtful: 0 triangles" "kept: 12 triangles in 1 patch" \
+        "seen from behind (inside-out)" "ringed: too small to see"
+    check "--mark FILE.png --inspect: the legend says \"would flip\"" \
+        picture legend cubes.off --inspect -- "would flip: 12 triangles" "doubtful: 0 triangles" \
+        "kept: 12 triangles in 1 patch" "seen from behind (inside-out)" "ringed: too small to see"
+    check "--mark FILE.png: the report flips the inside-out cube of two (12 triangles)" flipped_report cubes.off 12
+    check "--mark FILE.png: red exactly where the flipped cube projects in each view, grey on the kept one; before: both grey" \
+        picture cubes cubes.off
+    check "--mark FILE.png: a cube with nothing flipped has no red, amber or back-face pixel" picture clean cube.off
+    check "--mark FILE.png: an open sheet facing down is back-face blue from above, culled before (policy seed keeps it)" \
+        picture sheet_down sheet_down.off --policy seed
+    check "--mark FILE.png: the same sheet facing up has no back-face pixel, grey before too" \
+        picture sheet_up sheet_up.off --policy seed
+    check "--mark FILE.png: 3 triangles flipped of 76,800 (each a few pixels): red rings there in all 8 views, no red elsewhere" \
+        picture small fine_cube.off -- 0.51 0 0.51
+    check "--mark FILE.png: the legend of those 3 flipped triangles" \
+        picture legend fine_cube.off -- "flipped: 3 triangles" "doubtful: 0 triangles" \
+        "kept: 76797 triangles in 1 patch" "seen from behind (inside-out)" "ringed: too small to see"
+    check "--mark FILE.png: up by convention: OFF z (its title says so)" picture title cubes.off -- "up +z (OFF)"
+    check "--mark FILE.png: up by convention: PLY and STL z" png_formats
+    if [ -f /usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb ] && $MESHFIX --version | grep -q glTF; then
+        check "--mark FILE.png: up by convention: glTF y" png_gltf
+    else
+        echo "SKIP --mark FILE.png: up by convention: glTF y: no glTF support or no assimp-testmodels (apt-get install assimp-testmodels)"
+    fi
+    check "--mark FILE.png: a y-up OBJ (an L standing on y = 0) drawn y up, its top view the L as it lies" \
+        picture slab slab_y.obj -- --up y
+    check "--mark FILE.png: the y-up OBJ's title says why" picture title slab_y.obj -- "up +y (OBJ)" --up y
+    check "--mark FILE.png: the same L turned z up, standing on z = 0: z up, the same pixels in every view" \
+        slab_same slab_y.obj slab_z.obj z
+    check "--mark FILE.png: the same L z up, centred (only its flat base says so): z up, the same pixels" \
+        slab_same slab_y.obj slab_zc.obj z
+    check "--mark FILE.png: their titles say why" sh -c "$PNG_CHECK $tmp/png/slab_z.obj.png title 'up +z (OBJ standing on z = 0)' &&
+        $PNG_CHECK $tmp/png/slab_zc.obj.png title 'up +z (OBJ with a flat base at its lowest z)'"
+    check "--mark FILE.png: --up overrides the convention (the y-up OBJ drawn z up)" \
+        picture title slab_y.obj --up z -- "up +z (--up)"
     check "--mark FILE.png: the same input gives the same bytes" png_deterministic
     check "docs/demo_marked.png, the README's picture, is what make demo draws" png_docs
     check "--mark DIR --mark-format png: a picture per input (PLY without it)" png_batch
     check "--mark FILE.png unwritable, or the output unwritable: nothing written" png_unwritable
 elif ! png_supported; then
-    echo "skip --mark FILE.png pictures ($MESHFIX was built without PNG support)"
+    echo "SKIP --mark FILE.png pictures: $MESHFIX was built without PNG support (apt-get install libpng-dev)"
 else
-    echo "skip --mark FILE.png pictures (no python3 to read them)"
+    echo "SKIP --mark FILE.png pictures: no python3 to read them (apt-get install python3)"
+fi
+# ---- --mark FILE.ply in Blender ----
+# Blender 3.4's PLY importer drops face colours: the mark carries vertex
+# colours too, a vertex copied where faces of different colours share it.
+# Debian's Blender imports it headless (tests/cli/blender_mark.py); the
+# faces it shows red must be exactly the ones turned (tests/cli/turn_faces.py).
+
+blender_mark() { # DIR IN.obj FACE...: turns the faces, repairs with --mark, imports the mark in Blender
+    local d=$1 in=$2
+    shift 2
+    mkdir -p "$d"
+    python3 tests/cli/turn_faces.py "$in" "$d/turned.obj" "$d/expected.txt" "$@" >/dev/null || return 1
+    $MESHFIX --quiet "$d/turned.obj" "$d/fixed.obj" --mark "$d/mark.ply" || return 1
+    blender -b --factory-startup --python-exit-code 1 --python tests/cli/blender_mark.py -- "$d/mark.ply" "$d/got.txt" \
+        >"$d/blender.log" 2>&1 || { tail -n 20 "$d/blender.log"; return 1; }
+    cat "$d/got.txt" | grep -v '^red\|^amber'
+    grep -q '^colour [^ ]* \(CORNER\|POINT\)' "$d/got.txt" || { echo "no colour attribute imported"; return 1; }
+    grep -q '^mixed 0$' "$d/got.txt" || { echo "faces of more than one colour"; return 1; }
+    ! grep -q '^amber' "$d/got.txt" || { echo "amber faces"; return 1; }
+    grep '^red' "$d/got.txt" | sort | diff - "$d/expected.txt" || { echo "(< red in Blender, > turned)"; return 1; }
+}
+if ! command -v blender >/dev/null 2>&1; then
+    echo "SKIP --mark FILE.ply in Blender: blender is not installed (apt-get install blender)"
+elif ! command -v python3 >/dev/null 2>&1; then
+    echo "SKIP --mark FILE.ply in Blender: no python3 to write the input (apt-get install python3)"
+else
+    mkdir -p "$tmp/bl"
+    python3 "$tmp/meshes.py" "$tmp/bl"
+    check "--mark FILE.ply in Blender: a cube with one triangle turned, its corners shared: exactly it red" \
+        blender_mark "$tmp/bl/one" "$tmp/bl/cube.obj" 5
+    check "--mark FILE.ply in Blender: two triangles of a cube's face and one of the next: exactly they red" \
+        blender_mark "$tmp/bl/three" "$tmp/bl/cube.obj" 0 1 4
 fi
 check "--mark FILE.jpg: exit 1, one line naming .ply and .png" one_line_error 1 "give a .ply or .png file" \
     $MESHFIX --quiet "$tmp/demo.obj" "$tmp/x.obj" --mark "$tmp/x.jpg"

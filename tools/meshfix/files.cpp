@@ -10,6 +10,7 @@ extern "C" {
 #include <atomic>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
@@ -577,12 +578,22 @@ bool written_flipped(const Unit &u, const UnitResult &r, size_t t)
     return r.status == MESHFIX_OK && r.changes.face_flipped[u.triangle_face[t]];
 }
 
+/* Hues from yellow-green to sea green (70 to 160 degrees), pale: never
+   near red, amber or the picture's back-face blue, whatever the patch. */
 void patch_tint(unsigned int patch, unsigned char rgb[3])
 {
     unsigned int h = patch * 2654435761u;
-    rgb[0] = (unsigned char)(90 + (h >> 8) % 80);
-    rgb[1] = (unsigned char)(120 + (h >> 16) % 100);
-    rgb[2] = (unsigned char)(140 + (h >> 24) % 100);
+    double hue = 70.0 + (double)((h >> 8) % 91u), s = 0.22 + 0.01 * (double)((h >> 16) % 24u),
+           v = 0.70 + 0.01 * (double)((h >> 24) % 21u);
+    double sector = hue / 60.0, f = sector - std::floor(sector);
+    double p = v * (1.0 - s), q = v * (1.0 - s * f), t = v * (1.0 - s * (1.0 - f));
+    double c[3]; /* HSV to RGB in the two sectors the hues are in */
+    if (sector < 2.0) /* 70 to 120: yellow-green to green */
+        c[0] = q, c[1] = v, c[2] = p;
+    else /* 120 to 160: green to sea green */
+        c[0] = p, c[1] = v, c[2] = t;
+    for (int k = 0; k < 3; ++k)
+        rgb[k] = (unsigned char)std::lround(255.0 * c[k]);
 }
 
 /* The file's vertex of the unit's vertex v: the written mesh has the
@@ -590,6 +601,101 @@ void patch_tint(unsigned int patch, unsigned char rgb[3])
    (an OBJ's (v, vn) pairs would split a cube into six loose quads). */
 namespace {
 uint32_t file_vertex_of(const Unit &u, uint32_t v) { return u.file_vertex.empty() ? v : u.file_vertex[v]; }
+
+/* The colour of a triangle in the --mark PLY. */
+void mark_colour(const Unit &u, const UnitResult &r, size_t t, unsigned char rgb[3])
+{
+    static const unsigned char flipped[3] = {230, 30, 30}, doubtful_rgb[3] = {255, 176, 0}, none[3] = {40, 40, 40};
+    const unsigned char *c = none;
+    switch (mark_of(u, r, t)) {
+    case Mark::doubtful:
+        c = doubtful_rgb;
+        break;
+    case Mark::flipped:
+        c = flipped;
+        break;
+    case Mark::none:
+        break;
+    case Mark::kept:
+        patch_tint(r.patch_ids[t], rgb);
+        return;
+    }
+    rgb[0] = c[0], rgb[1] = c[1], rgb[2] = c[2];
+}
+
+void put_u32le(std::string &out, uint32_t v)
+{
+    for (int k = 0; k < 4; ++k)
+        out += (char)(unsigned char)(v >> (8 * k));
+}
+
+void put_f32le(std::string &out, float f)
+{
+    uint32_t v;
+    std::memcpy(&v, &f, 4);
+    put_u32le(out, v);
+}
+
+/* The --mark PLY: binary little-endian, a colour per face and per vertex
+   (Blender's PLY importer reads only the vertices' colours, MeshLab
+   either). Vertex i is the file's vertex i, coloured as the first face
+   that uses it; where a face of another colour uses it too, that face
+   gets a copy of it in its colour (after the file's vertices, in the
+   order the faces first need them), so that every corner of a face has
+   the face's colour exactly. */
+bool write_mark_ply(const std::string &path, const std::vector<float> &positions, const std::vector<unsigned int> &indices,
+                    const std::vector<unsigned char> &face_rgb, std::string &error)
+{
+    const size_t n = positions.size() / 3, faces = indices.size() / 3;
+    const uint32_t unset = 0xFFFFFFFFu;
+    std::vector<uint32_t> colour_of(n, unset); /* the colour (r << 16 | g << 8 | b) vertex i has */
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> copies; /* (vertex, colour) -> its copy */
+    std::vector<uint32_t> copy_of;                            /* the vertex each copy repeats */
+    std::vector<unsigned int> corners(indices.size());
+    for (size_t f = 0; f < faces; ++f) {
+        const unsigned char *c = &face_rgb[3 * f];
+        uint32_t colour = (uint32_t)c[0] << 16 | (uint32_t)c[1] << 8 | c[2];
+        for (size_t k = 0; k < 3; ++k) {
+            uint32_t v = indices[3 * f + k];
+            if (colour_of[v] == unset)
+                colour_of[v] = colour;
+            if (colour_of[v] == colour) {
+                corners[3 * f + k] = v;
+                continue;
+            }
+            auto found = copies.emplace(std::make_pair(v, colour), (uint32_t)(n + copy_of.size()));
+            if (found.second)
+                copy_of.push_back(v), colour_of.push_back(colour);
+            corners[3 * f + k] = found.first->second;
+        }
+    }
+    if (n + copy_of.size() > 0xFFFFFFFFu) {
+        error = "cannot write '" + path + "': too many vertices for the --mark PLY";
+        return false;
+    }
+    std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by meshfix: --mark\n"
+                      "element vertex " + std::to_string(n + copy_of.size()) +
+                      "\nproperty float x\nproperty float y\nproperty float z\n"
+                      "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                      "element face " + std::to_string(faces) +
+                      "\nproperty list uchar uint vertex_indices\n"
+                      "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+    out.reserve(out.size() + 15 * (n + copy_of.size()) + 16 * faces);
+    for (size_t i = 0; i < n + copy_of.size(); ++i) {
+        size_t v = i < n ? i : copy_of[i - n];
+        uint32_t colour = colour_of[i] == unset ? 0x282828u : colour_of[i]; /* unused: the colour of no patch */
+        for (size_t k = 0; k < 3; ++k)
+            put_f32le(out, positions[3 * v + k]);
+        out += (char)(unsigned char)(colour >> 16), out += (char)(unsigned char)(colour >> 8), out += (char)(unsigned char)colour;
+    }
+    for (size_t f = 0; f < faces; ++f) {
+        out += (char)3;
+        for (size_t k = 0; k < 3; ++k)
+            put_u32le(out, corners[3 * f + k]);
+        out.append((const char *)&face_rgb[3 * f], 3);
+    }
+    return write_bytes(path, out, error);
+}
 } // namespace
 
 bool write_triangles(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
@@ -610,31 +716,20 @@ bool write_triangles(const std::string &path, const MeshFile &file, const std::v
             indices.insert(indices.end(), {base + file_vertex_of(u, corner[0]),
                                            base + file_vertex_of(u, corner[flipped ? 2 : 1]),
                                            base + file_vertex_of(u, corner[flipped ? 1 : 2])});
-            unsigned char tint[3];
-            switch (mark_of(u, r, t)) {
-            case Mark::doubtful:
-                rgb.insert(rgb.end(), {255, 176, 0});
-                break;
-            case Mark::flipped:
-                rgb.insert(rgb.end(), {230, 30, 30});
-                break;
-            case Mark::none:
-                rgb.insert(rgb.end(), {40, 40, 40});
-                break;
-            case Mark::kept:
-                patch_tint(r.patch_ids[t], tint);
-                rgb.insert(rgb.end(), {tint[0], tint[1], tint[2]});
-                break;
-            }
+            unsigned char c[3];
+            mark_colour(u, r, t, c);
+            rgb.insert(rgb.end(), {c[0], c[1], c[2]});
         }
     }
+    if (colours)
+        return write_mark_ply(path, positions, indices, rgb, error);
     mio_mesh mesh;
     mesh.positions = positions.data();
     mesh.vertex_count = positions.size() / 3;
     mesh.indices = indices.data();
     mesh.index_count = indices.size();
     char message[256];
-    if (!mio_save(path.c_str(), &mesh, colours ? rgb.data() : nullptr, message, sizeof(message))) {
+    if (!mio_save(path.c_str(), &mesh, nullptr, message, sizeof(message))) {
         error = message;
         return false;
     }

@@ -10,23 +10,24 @@
 namespace tool {
 namespace {
 
-/* The --mark picture's words and up axis, and the picture. */
+/* The --mark picture's words and up axis (said in its title), and the picture. */
 bool write_mark_picture(const std::string &path, const Job &job, const Settings &s, std::string &error)
 {
     size_t triangles = 0;
     for (const Unit &u : job.file->units)
         triangles += u.indices.size() / 3;
+    /* --up when given; else the format's convention (picture_up) */
+    float up[3] = {s.up[0], s.up[1], s.up[2]};
+    std::string why = "--up";
+    if (!s.up_given)
+        picture_up(*job.file, up, why);
+    std::string axis = std::string(up[0] + up[1] + up[2] > 0.0f ? "+" : "-") + (up[0] != 0.0f ? "x" : up[1] != 0.0f ? "y" : "z");
     PictureText text;
     text.title = base_name(job.input) + ": " + std::to_string(triangles) + (triangles == 1 ? " triangle" : " triangles") +
-                 ", policy " + s.policy_name + (s.check ? ", --check" : s.inspect ? ", --inspect" : "");
+                 ", policy " + s.policy_name + (s.check ? ", --check" : s.inspect ? ", --inspect" : "") + ", up " + axis +
+                 " (" + why + ")";
     text.summary = summary_line(job, s);
     text.inspect = s.inspect;
-    /* --up when given; else glTF's up (+y) for glTF, +z for the rest */
-    float up[3] = {0.0f, 0.0f, 1.0f};
-    if (s.up_given)
-        up[0] = s.up[0], up[1] = s.up[1], up[2] = s.up[2];
-    else if (is_gltf_format(job.file->format()))
-        up[1] = 1.0f, up[2] = 0.0f;
     return write_picture(path, *job.file, job.results, up, text, error);
 }
 

@@ -41,6 +41,8 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <set>
 
 namespace tool {
 
@@ -286,7 +288,8 @@ struct Face {
     Vec p[3];
     Vec normal; /* unit, by the winding as written; zero when degenerate */
     Mark mark;
-    Rgb kept; /* its colour when kept */
+    bool turned; /* flipped by the repair: as read, its normal is the other way */
+    Rgb kept;    /* its colour when kept */
 };
 
 /* The triangles of the file, with every corner finite, as Faces. */
@@ -327,6 +330,7 @@ public:
                     face.p[k] = place(c[turned && k > 0 ? 3 - k : k]);
                 face.normal = unit(cross(face.p[1] - face.p[0], face.p[2] - face.p[0]));
                 face.mark = mark_of(u, res, t);
+                face.turned = turned;
                 face.kept = no_patch;
                 if (face.mark == Mark::kept) {
                     unsigned char tint[3];
@@ -386,23 +390,25 @@ private:
 
 struct View {
     std::string name, label;
+    bool before = false; /* the "before" row: the faces as read, those seen from behind culled */
     Vec toward, right, up; /* toward the camera; the screen's right and up */
     double lo_r = 0, hi_r = 0, lo_u = 0, hi_u = 0; /* the model's extent on right and up */
     int x = 0, y = 0, w = 0, h = 0;                /* the cell in the image */
     double scale = 1, ox = 0, oy = 0;              /* pixel = (ox + scale (p . right), oy - scale (p . up)) */
 };
 
-const int margin = 12, views_top = 100, gap = 10, pad = 14, label_h = 28;
-const int max_views_w = 1240, max_views_h = 960, min_cell_w = 250, min_content_h = 80, min_width = 740;
+const int margin = 12, views_top = 126, gap = 10, pad = 14, label_h = 28, header_h = 30, block_gap = 24;
+const int max_views_w = 1600, max_views_h = 1160, min_cell_w = 250, min_content_h = 80, min_width = 960;
 const int samples = 2; /* per pixel along x and y */
-const int legend_x[2] = {12, 330}, legend_y[2] = {40, 66}, swatch = 18;
+const int legend_x[2] = {12, 560}, legend_y[3] = {40, 66, 92}, swatch = 18;
 
-/* The four cameras for an up axis. The screen's right is +x (+y when up
-   is along x); the front camera is on the side right x up: -y when z is
-   up, +z when y is up (glTF's front), -z when x is up. The back camera is
-   opposite, the top one above looking down (the front at the bottom of
-   the view), the oblique one 35 degrees from the front to the right and
-   30 degrees up. */
+/* The four cameras for an up axis, each twice: the "after" views (front,
+   back, top, oblique), then the same cameras for "before" (before_front,
+   ...). The screen's right is +x (+y when up is along x); the front
+   camera is on the side right x up: -y when z is up, +z when y is up
+   (glTF's front), -z when x is up. The back camera is opposite, the top
+   one above looking down (the front at the bottom of the view), the
+   oblique one 35 degrees from the front to the right and 30 degrees up. */
 std::vector<View> cameras(const float up_axis[3])
 {
     Vec up = unit({up_axis[0], up_axis[1], up_axis[2]});
@@ -425,17 +431,29 @@ std::vector<View> cameras(const float up_axis[3])
         std::string from = axis_name(view.toward);
         view.label = view.name + (from.empty() ? "" : " (from " + from + ")");
     }
+    for (int k = 0; k < 4; ++k) {
+        View before = v[(size_t)k];
+        before.before = true;
+        before.name = "before_" + before.name;
+        v.push_back(before);
+    }
     return v;
 }
 
-/* Where the views are: the image's width and the grid's height. */
+/* Where the views are: the image's width, the grid's height and each
+   block's (before, after) top left corner and width. */
 struct Layout {
     int width = 0, grid_h = 0;
+    int block_x[2] = {0, 0}, block_y[2] = {0, 0}, block_w = 0;
 };
 
 /* Fits the views to the model and places them. Front, back and top share
    one scale (one drawing of the model, as on a plan); the oblique view is
-   fitted to the same cell on its own. */
+   fitted to the same cell on its own. The views of each block, before and
+   after, are a grid of 2 x 2, 4 x 1 or 1 x 4, the blocks stacked or side
+   by side (before first), whichever draws the plan views largest (the
+   oblique one counts a quarter): a row before above a row after unless
+   another is clearly larger. */
 Layout lay_out(std::vector<View> &views, const Model &model)
 {
     const double inf = std::numeric_limits<double>::infinity();
@@ -455,39 +473,47 @@ Layout lay_out(std::vector<View> &views, const Model &model)
         if (!(v.lo_r <= v.hi_r))
             v.lo_r = v.hi_r = v.lo_u = v.hi_u = 0.0; /* nothing to draw */
         m = std::max({m, v.hi_r - v.lo_r, v.hi_u - v.lo_u});
-        if (i < 3)
+        if (i % 4 < 3)
             mw = std::max(mw, v.hi_r - v.lo_r), mh = std::max(mh, v.hi_u - v.lo_u);
     }
     const View &oblique = views[3];
     double ow = std::max(oblique.hi_r - oblique.lo_r, 1e-3 * m), oh = std::max(oblique.hi_u - oblique.lo_u, 1e-3 * m);
     mw = std::max(mw, 1e-3 * m), mh = std::max(mh, 1e-3 * m);
-    /* the grid that draws the plan views largest (the oblique one counts a
-       quarter), the square one unless another is clearly larger */
-    static const int grids[3][2] = {{2, 2}, {4, 1}, {1, 4}};
-    int cols = 2, rows = 2, content_w = 0, content_h = 0;
+    /* columns and rows of a block, and whether the blocks are side by side */
+    static const int arrangements[6][3] = {{4, 1, 0}, {2, 2, 1}, {2, 2, 0}, {1, 4, 1}, {4, 1, 1}, {1, 4, 0}};
+    int cols = 4, rows = 1, side = 0, content_w = 0, content_h = 0;
     double plan = 0, best = 0;
-    for (int g = 0; g < 3; ++g) {
-        int c = grids[g][0], r = grids[g][1];
-        double aw = (double)(max_views_w - (c - 1) * gap) / c - 2 * pad;
-        double ah = (double)(max_views_h - (r - 1) * gap) / r - label_h - 2 * pad;
+    for (int g = 0; g < 6; ++g) {
+        int c = arrangements[g][0], r = arrangements[g][1], sd = arrangements[g][2];
+        int bw = sd ? (max_views_w - block_gap) / 2 : max_views_w;
+        int bh = sd ? max_views_h - header_h : (max_views_h - block_gap) / 2 - header_h;
+        double aw = (double)(bw - (c - 1) * gap) / c - 2 * pad;
+        double ah = (double)(bh - (r - 1) * gap) / r - label_h - 2 * pad;
         double s = std::min(aw / mw, ah / mh);
         int cw = std::max((int)std::ceil(s * mw), min_cell_w - 2 * pad), ch = std::max((int)std::ceil(s * mh), min_content_h);
         double score = std::pow(s, 0.75) * std::pow(std::min(cw / ow, ch / oh), 0.25);
         if (g == 0 || score > 1.15 * best)
-            cols = c, rows = r, plan = s, best = score, content_w = cw, content_h = ch;
+            cols = c, rows = r, side = sd, plan = s, best = score, content_w = cw, content_h = ch;
     }
     int cell_w = content_w + 2 * pad, cell_h = label_h + content_h + 2 * pad;
-    int grid_w = cols * cell_w + (cols - 1) * gap;
+    int block_w = cols * cell_w + (cols - 1) * gap, block_h = header_h + rows * cell_h + (rows - 1) * gap;
+    int grid_w = side ? 2 * block_w + block_gap : block_w;
     Layout out;
     out.width = std::max(min_width, grid_w + 2 * margin);
-    out.grid_h = rows * cell_h + (rows - 1) * gap;
+    out.grid_h = side ? block_h : 2 * block_h + block_gap;
+    out.block_w = block_w;
     int x0 = (out.width - grid_w) / 2;
+    for (int b = 0; b < 2; ++b) {
+        out.block_x[b] = x0 + (side ? b * (block_w + block_gap) : 0);
+        out.block_y[b] = views_top + (side ? 0 : b * (block_h + block_gap));
+    }
     for (size_t i = 0; i < views.size(); ++i) {
         View &v = views[i];
-        v.x = x0 + (int)(i % (size_t)cols) * (cell_w + gap);
-        v.y = views_top + (int)(i / (size_t)cols) * (cell_h + gap);
+        int b = v.before ? 0 : 1, k = (int)(i % 4);
+        v.x = out.block_x[b] + (k % cols) * (cell_w + gap);
+        v.y = out.block_y[b] + header_h + (k / cols) * (cell_h + gap);
         v.w = cell_w, v.h = cell_h;
-        v.scale = i < 3 ? plan : std::min(content_w / ow, content_h / oh);
+        v.scale = i % 4 < 3 ? plan : std::min(content_w / ow, content_h / oh);
         double ew = v.scale * (v.hi_r - v.lo_r), eh = v.scale * (v.hi_u - v.lo_u);
         v.ox = v.x + pad + (content_w - ew) / 2 - v.scale * v.lo_r;
         v.oy = v.y + label_h + pad + (content_h - eh) / 2 + v.scale * v.hi_u;
@@ -501,25 +527,34 @@ Rgb shade(Rgb c, double light)
             (unsigned char)std::lround(c.b * light)};
 }
 
-/* Draws one view into its cell of the canvas. */
-void draw_view(Canvas &canvas, const View &v, const Model &model)
+bool is_marked(Mark m) { return m == Mark::flipped || m == Mark::doubtful; }
+
+/* Draws one view into its cell of the canvas. An "after" view fills
+   `marked` (when given) with a byte per sample, 1 where a flipped or
+   doubtful face is what the sample shows. */
+void draw_view(Canvas &canvas, const View &v, const Model &model, std::vector<unsigned char> *marked)
 {
     const int sw = v.w * samples, sh = v.h * samples;
     const double none = -std::numeric_limits<double>::infinity();
     std::vector<double> depth((size_t)sw * (size_t)sh, none);
     std::vector<Rgb> colour((size_t)sw * (size_t)sh, panel);
+    std::vector<unsigned char> shows_mark(marked != nullptr ? (size_t)sw * (size_t)sh : 0, 0);
     const Vec light = unit(v.right * -0.35 + v.up * 0.45 + v.toward * 0.82); /* from the upper left, near the camera */
     /* a sample: nearer than what is there (ties to the first drawn) */
-    auto put = [&](int i, int j, double z, Rgb c) {
+    auto put = [&](int i, int j, double z, Rgb c, bool mark) {
         if (i < 0 || j < 0 || i >= sw || j >= sh)
             return;
         size_t at = (size_t)j * (size_t)sw + (size_t)i;
-        if (z > depth[at])
+        if (z > depth[at]) {
             depth[at] = z, colour[at] = c;
+            if (marked != nullptr)
+                shows_mark[at] = mark;
+        }
     };
     model.each_face([&](const Face &f) {
         if (dot(f.normal, f.normal) == 0.0)
             return; /* degenerate: no side to show */
+        Vec normal = v.before && f.turned ? f.normal * -1.0 : f.normal; /* before: as read */
         double X[3], Y[3], Z[3];
         for (int k = 0; k < 3; ++k) {
             X[k] = (v.ox + v.scale * dot(f.p[k], v.right) - v.x) * samples;
@@ -527,13 +562,16 @@ void draw_view(Canvas &canvas, const View &v, const Model &model)
             Z[k] = dot(f.p[k], v.toward);
         }
         double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
-        double facing = dot(f.normal, v.toward);
+        double facing = dot(normal, v.toward);
         bool front = facing > -1e-6; /* edge-on counts as front */
-        double lit = 0.35 + 0.65 * std::max(0.0, dot(front ? f.normal : f.normal * -1.0, light));
-        bool marked = f.mark == Mark::flipped || f.mark == Mark::doubtful;
-        Rgb base = !marked ? (front ? f.kept : back_blue) : f.mark == Mark::flipped ? red : amber;
+        if (v.before && !front)
+            return; /* culled, as a renderer culls back faces */
+        double lit = 0.35 + 0.65 * std::max(0.0, dot(front ? normal : normal * -1.0, light));
+        bool marked_face = !v.before && is_marked(f.mark);
+        Rgb base = v.before ? Rgb{grey, grey, grey}
+                            : !marked_face ? (front ? f.kept : back_blue) : f.mark == Mark::flipped ? red : amber;
         Rgb main = shade(base, lit), stripe = shade(back_blue, lit);
-        bool striped = !front && marked;
+        bool striped = !front && marked_face;
         if (std::fabs(area) < 2.0) {
             /* edge-on, or smaller than a pixel: its edges, a pixel wide, so
                that a sheet seen from its side is a line and a dense mesh
@@ -549,7 +587,7 @@ void draw_view(Canvas &canvas, const View &v, const Model &model)
                     double x = X[a] + t * (X[b] - X[a]), y = Y[a] + t * (Y[b] - Y[a]), z = Z[a] + t * (Z[b] - Z[a]);
                     for (int j = (int)std::ceil(y - 1.5); j <= (int)std::floor(y + 0.5); ++j)
                         for (int i = (int)std::ceil(x - 1.5); i <= (int)std::floor(x + 0.5); ++i)
-                            put(i, j, z - 1e-4, main);
+                            put(i, j, z - 1e-4, main, marked_face);
                 }
             }
             return;
@@ -582,7 +620,7 @@ void draw_view(Canvas &canvas, const View &v, const Model &model)
                 if (b0 < 0.0 || b1 < 0.0 || b2 < 0.0)
                     continue;
                 put(i, j, b0 * Z[0] + b1 * Z[1] + b2 * Z[2],
-                    striped && ((i + j) / (8 * samples)) % 2 == 1 ? stripe : main);
+                    striped && ((i + j) / (8 * samples)) % 2 == 1 ? stripe : main, marked_face);
             }
         }
     });
@@ -620,6 +658,109 @@ void draw_view(Canvas &canvas, const View &v, const Model &model)
                                           (unsigned char)((b + n / 2) / n)});
         }
     canvas.text(v.x + 8, v.y + 6, fit(v.label, (size_t)(v.w - 16) / advance), muted);
+    if (marked != nullptr)
+        marked->swap(shows_mark);
+}
+
+/* ---- rings: marked faces too small to see ---- */
+
+/* A ring, its centre relative to its view's cell (the same in the before
+   view of that camera). */
+struct Ring {
+    double x, y, r;
+    Rgb c;
+};
+
+const int spot_cell = 24;       /* pixels: marked faces whose centres are this close are one spot */
+const int visible_enough = 100; /* pixels: a spot showing fewer marked ones is ringed */
+const size_t most_rings = 24;   /* per view */
+
+/* The spots of marked faces in an "after" view that show fewer than
+   visible_enough marked pixels (hidden, edge-on or small), each as a ring
+   around it: red when a face of it is flipped, else amber. A spot is the
+   marked faces whose projected centres fall in touching 24-pixel squares;
+   the first most_rings spots, in the order of their squares (top to
+   bottom, left to right). */
+std::vector<Ring> find_rings(const View &v, const Model &model, const std::vector<unsigned char> &marked)
+{
+    struct Square {
+        double x0, y0, x1, y1; /* the projected extent of its faces, in the cell */
+        bool flipped;
+        int spot;
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    std::map<std::pair<int, int>, Square> squares; /* (row, column) */
+    model.each_face([&](const Face &f) {
+        if (!is_marked(f.mark))
+            return;
+        double X[3], Y[3];
+        for (int k = 0; k < 3; ++k)
+            X[k] = v.ox + v.scale * dot(f.p[k], v.right) - v.x, Y[k] = v.oy - v.scale * dot(f.p[k], v.up) - v.y;
+        double cx = (X[0] + X[1] + X[2]) / 3.0, cy = (Y[0] + Y[1] + Y[2]) / 3.0;
+        std::pair<int, int> key((int)std::floor(cy / spot_cell), (int)std::floor(cx / spot_cell));
+        Square &q = squares.emplace(key, Square{inf, inf, -inf, -inf, false, -1}).first->second;
+        q.x0 = std::min({q.x0, X[0], X[1], X[2]}), q.x1 = std::max({q.x1, X[0], X[1], X[2]});
+        q.y0 = std::min({q.y0, Y[0], Y[1], Y[2]}), q.y1 = std::max({q.y1, Y[0], Y[1], Y[2]});
+        q.flipped |= f.mark == Mark::flipped;
+    });
+    std::vector<Ring> rings;
+    int spots = 0;
+    for (auto &start : squares) {
+        if (start.second.spot >= 0)
+            continue;
+        /* the spot: the squares touching this one, and so on (8 neighbours) */
+        Square spot = start.second;
+        std::vector<std::pair<int, int>> todo{start.first};
+        start.second.spot = spots;
+        while (!todo.empty()) {
+            std::pair<int, int> at = todo.back();
+            todo.pop_back();
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    auto next = squares.find({at.first + dy, at.second + dx});
+                    if (next == squares.end() || next->second.spot >= 0)
+                        continue;
+                    Square &q = next->second;
+                    q.spot = spots;
+                    spot.x0 = std::min(spot.x0, q.x0), spot.x1 = std::max(spot.x1, q.x1);
+                    spot.y0 = std::min(spot.y0, q.y0), spot.y1 = std::max(spot.y1, q.y1);
+                    spot.flipped |= q.flipped;
+                    todo.push_back(next->first);
+                }
+        }
+        ++spots;
+        /* its marked pixels that show */
+        int i0 = std::max(0, (int)std::floor(spot.x0 * samples)), i1 = std::min(v.w * samples - 1, (int)std::ceil(spot.x1 * samples));
+        int j0 = std::max(0, (int)std::floor(spot.y0 * samples)), j1 = std::min(v.h * samples - 1, (int)std::ceil(spot.y1 * samples));
+        long shown = 0;
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i)
+                shown += marked[(size_t)j * (size_t)(v.w * samples) + (size_t)i];
+        if (shown >= (long)visible_enough * samples * samples)
+            continue;
+        double w = spot.x1 - spot.x0, h = spot.y1 - spot.y0;
+        double r = std::min(std::max(0.5 * std::sqrt(w * w + h * h) + 8.0, 14.0), std::min(v.w, v.h) / 3.0);
+        rings.push_back({0.5 * (spot.x0 + spot.x1), 0.5 * (spot.y0 + spot.y1), r, spot.flipped ? red : amber});
+        if (rings.size() == most_rings)
+            break;
+    }
+    return rings;
+}
+
+/* A ring 3 pixels wide with a white pixel each side, within the rectangle
+   (x, y, w, h) of the canvas. */
+void draw_ring(Canvas &canvas, double cx, double cy, double r, Rgb c, int x, int y, int w, int h)
+{
+    int i0 = std::max(x, (int)std::floor(cx - r - 3)), i1 = std::min(x + w - 1, (int)std::ceil(cx + r + 3));
+    int j0 = std::max(y, (int)std::floor(cy - r - 3)), j1 = std::min(y + h - 1, (int)std::ceil(cy + r + 3));
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+            double dx = i + 0.5 - cx, dy = j + 0.5 - cy, d = std::fabs(std::sqrt(dx * dx + dy * dy) - r);
+            if (d <= 1.5)
+                canvas.put(i, j, c);
+            else if (d <= 2.5)
+                canvas.put(i, j, white);
+        }
 }
 
 std::string number(double x)
@@ -716,6 +857,102 @@ bool encode_png(const Canvas &canvas, const std::string &views, PngSink &sink)
 
 } // namespace
 
+namespace {
+
+std::string triangles_word(size_t n) { return std::to_string(n) + (n == 1 ? " triangle" : " triangles"); }
+
+/* The legend's words: what each colour covers, counted in triangles. */
+std::vector<std::string> legend_words(const MeshFile &file, const std::vector<UnitResult> &results, bool inspect)
+{
+    size_t flipped = 0, doubtful = 0, doubtful_flipped = 0, kept = 0, none = 0;
+    std::set<std::pair<size_t, unsigned int>> kept_patches;
+    for (size_t i = 0; i < file.units.size(); ++i) {
+        const Unit &u = file.units[i];
+        const UnitResult &r = results[i];
+        for (size_t t = 0; t < u.indices.size() / 3; ++t)
+            switch (mark_of(u, r, t)) {
+            case Mark::flipped:
+                ++flipped;
+                break;
+            case Mark::doubtful:
+                ++doubtful;
+                doubtful_flipped += r.changes.face_flipped[u.triangle_face[t]]; /* flipped, or would be */
+                break;
+            case Mark::kept:
+                ++kept;
+                kept_patches.insert({i, r.patch_ids[t]});
+                break;
+            case Mark::none:
+                ++none;
+                break;
+            }
+    }
+    size_t patches = kept_patches.size();
+    return {(inspect ? "would flip: " : "flipped: ") + triangles_word(flipped),
+            "doubtful: " + triangles_word(doubtful) +
+                (doubtful != 0 ? ", " + std::to_string(doubtful_flipped) + (inspect ? " would flip" : " flipped") : ""),
+            "kept: " + triangles_word(kept) + " in " + std::to_string(patches) + (patches == 1 ? " patch" : " patches") +
+                (none != 0 ? " (" + std::to_string(none) + " in none)" : ""),
+            "seen from behind (inside-out)", "ringed: too small to see"};
+}
+
+} // namespace
+
+void picture_up(const MeshFile &file, float up[3], std::string &why)
+{
+    up[0] = up[1] = 0.0f, up[2] = 1.0f;
+    std::string format = file.format();
+    if (is_gltf_format(format) || format == "obj")
+        up[1] = 1.0f, up[2] = 0.0f;
+    why = format == "obj" ? "OBJ" : is_gltf_format(format) ? "glTF" : format == "stl" ? "STL" : format == "ply" ? "PLY" : "OFF";
+    if (format != "obj")
+        return;
+    /* the mesh's extent, then its area and the level area at its lowest y and z */
+    const double inf = std::numeric_limits<double>::infinity();
+    double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf};
+    auto each_triangle = [&](auto &&use) {
+        for (const Unit &u : file.units)
+            for (size_t t = 0; t < u.indices.size() / 3; ++t) {
+                const double *c[3];
+                bool finite = true;
+                for (int k = 0; k < 3; ++k) {
+                    c[k] = &u.positions[3 * (size_t)u.indices[3 * t + (size_t)k]];
+                    finite = finite && std::isfinite(c[k][0]) && std::isfinite(c[k][1]) && std::isfinite(c[k][2]);
+                }
+                if (finite)
+                    use(c);
+            }
+    };
+    each_triangle([&](const double *const *c) {
+        for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a)
+                lo[a] = std::min(lo[a], c[k][a]), hi[a] = std::max(hi[a], c[k][a]);
+    });
+    double size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    if (!(size > 0.0) || !std::isfinite(size))
+        return;
+    if (std::fabs(lo[2]) <= 0.005 * size && std::fabs(lo[1]) > 0.05 * size) {
+        up[1] = 0.0f, up[2] = 1.0f, why = "OBJ standing on z = 0";
+        return;
+    }
+    double area = 0.0, base[3] = {0.0, 0.0, 0.0};
+    const double level = std::cos(25.0 * 3.14159265358979323846 / 180.0);
+    each_triangle([&](const double *const *c) {
+        Vec a{c[0][0], c[0][1], c[0][2]}, b{c[1][0], c[1][1], c[1][2]}, d{c[2][0], c[2][1], c[2][2]};
+        Vec n = cross(b - a, d - a);
+        double twice = std::sqrt(dot(n, n));
+        area += 0.5 * twice;
+        for (int axis = 1; axis < 3; ++axis) {
+            double along = axis == 1 ? n.y : n.z;
+            double top = std::max({c[0][axis], c[1][axis], c[2][axis]});
+            if (twice > 0.0 && std::fabs(along) >= level * twice && top <= lo[axis] + 0.01 * size)
+                base[axis] += 0.5 * twice;
+        }
+    });
+    if (base[2] >= 0.01 * area && base[2] >= 3.0 * base[1])
+        up[1] = 0.0f, up[2] = 1.0f, why = "OBJ with a flat base at its lowest z";
+}
+
 bool write_picture(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
                    const float up[3], const PictureText &words, std::string &error)
 {
@@ -732,18 +969,33 @@ bool write_picture(const std::string &path, const MeshFile &file, const std::vec
     const int summary_y = views_top + layout.grid_h + 12;
     Canvas canvas(width, summary_y + (int)summary.size() * line_height + 6, white);
     canvas.text(margin, 10, fit(drawable(words.title), columns), ink);
-    const Rgb swatches[4] = {red, amber, back_blue, {grey, grey, grey}};
-    const char *const legend[4] = {words.inspect ? "would be flipped" : "flipped by the repair", "doubtful patch",
-                                   "back face (renders inside-out)", "kept (tinted by patch)"};
-    for (int k = 0; k < 4; ++k) {
-        int x = legend_x[k / 2], y = legend_y[k % 2];
+    /* the legend: red, amber, grey in the first column; blue and the ring in the second */
+    const std::vector<std::string> legend = legend_words(file, results, words.inspect);
+    const Rgb swatches[4] = {red, amber, {grey, grey, grey}, back_blue};
+    for (int k = 0; k < 5; ++k) {
+        int x = legend_x[k / 3], y = legend_y[k % 3];
         canvas.rect(x - 1, y - 1, swatch + 2, swatch + 2, muted);
-        canvas.rect(x, y, swatch, swatch, swatches[k]);
-        canvas.text(x + swatch + 8, y, legend[k], ink);
+        if (k < 4)
+            canvas.rect(x, y, swatch, swatch, swatches[k]);
+        else
+            draw_ring(canvas, x + swatch / 2.0, y + swatch / 2.0, 5.5, red, x, y, swatch, swatch);
+        canvas.text(x + swatch + 8, y, fit(legend[(size_t)k], (size_t)(width - x - swatch - 8 - margin) / advance), ink);
+    }
+    const char *const headers[2] = {"before: the input as read, faces seen from behind culled (as a renderer draws it)",
+                                    words.inspect ? "after: as a repair would write it, marked" : "after: as written, the repair marked"};
+    for (int b = 0; b < 2; ++b)
+        canvas.text(layout.block_x[b], layout.block_y[b] + 6, fit(headers[b], (size_t)layout.block_w / advance), ink);
+    for (size_t k = 0; k < 4; ++k) {
+        View &after = views[k], &before = views[k + 4];
+        std::vector<unsigned char> marked;
+        draw_view(canvas, after, model, &marked);
+        draw_view(canvas, before, model, nullptr);
+        for (const Ring &ring : find_rings(after, model, marked))
+            for (const View *v : {&after, &before})
+                draw_ring(canvas, v->x + ring.x, v->y + ring.y, ring.r, ring.c, v->x, v->y + label_h, v->w, v->h - label_h);
     }
     std::string chunk;
     for (const View &v : views) {
-        draw_view(canvas, v, model);
         double s = model.file_scale(v.scale);
         chunk += v.name + " " + std::to_string(v.x) + " " + std::to_string(v.y) + " " + std::to_string(v.w) + " " +
                  std::to_string(v.h) + " " + number(model.file_offset(v.ox, v.scale, v.right)) + " " +

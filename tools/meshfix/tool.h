@@ -200,7 +200,8 @@ enum class Mark { kept, flipped, doubtful, none /* in no patch: degenerate, or i
 Mark mark_of(const Unit &unit, const UnitResult &result, size_t triangle);
 /* Whether triangle t is written turned over (its face flipped). */
 bool written_flipped(const Unit &unit, const UnitResult &result, size_t triangle);
-/* The PLY's colour of a kept triangle's patch (a hash of its number). */
+/* The PLY's colour of a kept triangle's patch (a hash of its number): a
+   pale green of some hue, never red, amber or blue. */
 void patch_tint(unsigned int patch, unsigned char rgb[3]);
 
 /* ---- the --mark picture (render.cpp) ---- */
@@ -212,15 +213,27 @@ bool png_supported();
 struct PictureText {
     std::string title;   /* the first line (the input, its triangles, the policy) */
     std::string summary; /* the last line, as the report prints it */
-    bool inspect = false; /* --inspect: the legend says "would be flipped" */
+    bool inspect = false; /* --inspect: the legend says "would flip" */
 };
 
-/* Draws every unit as repaired (faces as written) in four views, front,
-   back, top and oblique, with `up` up (a unit axis), flat-shaded with a
-   z-buffer: flipped faces red, doubtful patches amber, faces seen from
-   behind blue (striped with red or amber when marked too), the rest grey
-   tinted by patch; a legend and the text. Writes it to `path` as PNG
-   (deterministic: the same input gives the same bytes). */
+/* The picture's up axis when --up is not given, by the format's
+   convention: glTF +y; STL, PLY and OFF +z; OBJ +y (what Blender, Maya,
+   3ds Max and most exporters write) unless the mesh itself says +z: it
+   stands on z = 0 (its lowest z within 0.5% of its size from 0, its lowest
+   y more than 5% away), or its flat base is at its lowest z (faces within
+   1% of its size of the lowest z and within 25 degrees of level: 1% of
+   its area or more, and 3 times what lies so at its lowest y). `why` is
+   the reason in a few words ("OBJ standing on z = 0"). */
+void picture_up(const MeshFile &file, float up[3], std::string &why);
+
+/* Draws every unit twice, in four views each, front, back, top and
+   oblique, with `up` up (a unit axis), flat-shaded with a z-buffer:
+   "before", the faces as read with those seen from behind culled, as a
+   renderer draws them; "after", the faces as written, flipped ones red,
+   doubtful patches amber, faces seen from behind blue (striped with red or
+   amber when marked too), the rest grey tinted by patch; marked faces too
+   small to see ringed; a legend with counts and the text. Writes it to
+   `path` as PNG (deterministic: the same input gives the same bytes). */
 bool write_picture(const std::string &path, const MeshFile &file, const std::vector<UnitResult> &results,
                    const float up[3], const PictureText &text, std::string &error);
 
