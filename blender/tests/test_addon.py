@@ -628,10 +628,11 @@ def edit_undo_check(m):
     assert after == 0, "one undo in edit mode left %d faces flipped" % after
 
 
-def edit_selection_check(m, args, hide=False):
+def edit_selection_check(m, args, hide=False, inside=False):
     """Edit mode on a selection: the faces on one side of the middle, the others untouched; the
     selected ones flip as the tool flips a file of only them. hide: those faces hidden instead, none
-    selected: the visible ones are repaired."""
+    selected: the visible ones are repaired. inside: with Inside and Select Flipped Faces, the
+    selected faces the tool does not flip are the ones reversed, and the selection becomes them."""
     objects, scrambled = live(m)
     put(objects, scrambled)
     total = chosen = flipped_inside = 0
@@ -660,11 +661,15 @@ def edit_selection_check(m, args, hide=False):
     select_only(objects)
     bpy.ops.object.mode_set(mode='EDIT')
     bpy.ops.mesh.select_mode(type='FACE')
-    assert bpy.ops.mesh.meshfix_recalculate_outside('EXEC_DEFAULT') == {'FINISHED'}
+    options = dict(inside=True, select_flipped=True) if inside else {}
+    assert bpy.ops.mesh.meshfix_recalculate_outside('EXEC_DEFAULT', **options) == {'FINISHED'}
     bpy.ops.object.mode_set(mode='OBJECT')
     for o, r, mask, c, before in zip(objects, reference, masks, cli, normals):
         flips = reversed_from(o.data, r)
-        if before is not None:  # edit mode sets them on the mesh and reads the edit mesh back
+        if inside:
+            c = mask & ~c
+            assert np.array_equal(selected_faces(o.data), flips), "the selection is not the faces reversed"
+        elif before is not None:  # edit mode sets them on the mesh and reads the edit mesh back
             after = corner_values(o.data, "normal")
             a, b = (x / np.maximum(np.linalg.norm(x, axis=1), 1e-12)[:, None] for x in (before, after))
             turned = float(np.degrees(np.arccos(np.clip(np.sum(a * b, axis=1), -1.0, 1.0).min())))
@@ -770,6 +775,9 @@ def main():
         if name == "sh2.stl":
             check("%s: edit mode with nothing selected leaves the hidden faces, as the tool does on the others" % name,
                   edit_selection_check, m, args, True)
+        if name in ("sh2.stl", "spider.obj"):
+            check("%s: edit mode, Inside: only the selected faces change, those the tool does not flip; selected after" %
+                  name, edit_selection_check, m, args, False, True)
         if getattr(m, "doubtful", 0) and not doubtful_checked:
             doubtful_checked = check("%s: minimum confidence 0.99 selects at least the faces doubtful at 0.5" % name,
                                      min_confidence_check, m)
