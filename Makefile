@@ -150,6 +150,12 @@ test-only: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES
       $(SUITES:%=$(B)/%_fast) $(B)/test_openmesh
 	@CC="$(CC)" CXX="$(CXX)" MAKE="$(MAKE)" bash tests/run_all.sh
 
+# `make quick`: the six C suites, plain builds, and the tool's own tests
+# (tests/quick.sh); `make quick WORD=cut` only the C tests whose names
+# contain "cut", as `build/test_NAME WORD` does for one suite
+quick: $(B)/meshfix $(B)/demo_mesh $(SUITES:%=$(B)/%)
+	@bash tests/quick.sh $(WORD)
+
 $(B)/trust_eval: tests/eval/trust_eval.c tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/trust_eval.c -lm
 
@@ -174,10 +180,17 @@ sdf-demo: $(B)/sdf_demo
 BLENDER_ADDON = blender/__init__.py blender/repair.py blender/build.sh python/build.sh python/meshfix/__init__.py \
                 python/meshfix/_native.c meshfix.h
 
+# The browser page (js/page/): meshfix.h as WebAssembly and glTF-Transform's
+# core vendored from js/node_modules, into build/page; needs node, npm, emcc.
+page:
+	@cd js && { [ -f node_modules/@gltf-transform/core/package.json ] || npm ci --no-audit --no-fund; } && \
+		node scripts/build.mjs --if-stale && node scripts/page.mjs ../$(B)/page
+	@echo "open it: python3 -m http.server -b 127.0.0.1 -d $(B)/page 8000, then http://127.0.0.1:8000/"
+
 blender-addon: $(B)/meshfix_blender.zip
 
 $(B)/meshfix_blender.zip: $(BLENDER_ADDON) | $(B)
 	sh blender/build.sh $@
 
-.PHONY: all demo sdf-demo blender-addon test test-only bench fuzz clean FORCE
+.PHONY: all demo sdf-demo blender-addon page test test-only quick bench fuzz clean FORCE
 FORCE:

@@ -4,8 +4,10 @@
 # lines, then "N passed, N failed"; exits non-zero when anything failed.
 #
 # Installs what is missing when it can (root with apt-get): Debian's nodejs
-# and npm, emscripten, assimp-testmodels; the npm dev dependencies go into
-# js/node_modules (npm ci). Without node or emcc it says SKIP and passes.
+# and npm, emscripten, assimp-testmodels, chromium (the page's test); the npm
+# dev dependencies go into js/node_modules (npm ci). Without node or emcc it
+# says SKIP and passes; without chromium, when not root, it skips the page's
+# browser test the same way.
 # Build outputs: js/dist (the package's files), js/build (test scratch).
 set -u
 cd "$(dirname "$0")"
@@ -78,7 +80,7 @@ if [ ! -d "$models" ] && [ -z "${MESHFIX_GLTF_MODELS:-}" ]; then
 fi
 echo "node $(node --version), npm $(npm --version), $(emcc --version 2>/dev/null | head -n 1)"
 
-# dev dependencies (@gltf-transform/core, gltf-validator, typescript) into js/node_modules
+# dev dependencies (@gltf-transform/core, gltf-validator, typescript, puppeteer-core) into js/node_modules
 step "npm ci: dev dependencies into js/node_modules" npm ci --no-audit --no-fund || finish
 
 # the one Emscripten build: dist/meshfix.mjs and dist/meshfix.cjs
@@ -100,6 +102,38 @@ else
     echo "SKIP glTF models: $models is missing (Debian: apt-get install assimp-testmodels)"
 fi
 step "TypeScript: meshfix.d.ts compiles a user's code (tsc --strict)" npx tsc -p test/tsconfig.json
+
+# the browser page (page/): built into build/page; its readers and writers
+# under node, then the page itself in Debian's Chromium, headless, through
+# puppeteer-core; both compare what they write with the command-line tool's
+# output (../build/meshfix, built here when missing)
+cli=../build/meshfix
+if [ ! -x "$cli" ]; then
+    step "build: ../build/meshfix, the command-line tool the page is compared with" make -C .. -s build/meshfix || cli=
+fi
+if step "page: scripts/page.mjs builds page/ into build/page (meshfix.mjs, glTF-Transform vendored)" \
+    node scripts/page.mjs build/page; then
+    if [ -n "$cli" ]; then
+        suite "page: readers and writers" node test/page_files.test.mjs build/page "$cli" "$(dirname "$models")"
+    fi
+    chromium=$(command -v chromium || true)
+    if [ -z "$chromium" ]; then
+        apt_install chromium
+        chromium=$(command -v chromium || true)
+    fi
+    engine="$models/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"
+    if [ -z "$chromium" ] && [ "$(id -u)" -ne 0 ]; then
+        echo "SKIP the page in Chromium: chromium is not installed and only root can install it (apt-get install chromium)"
+    elif [ -z "$chromium" ]; then
+        failed=$((failed + 1))
+        echo "FAIL the page in Chromium: apt-get install chromium failed (see $logs/apt.log)"
+    elif [ -z "$cli" ] || [ ! -f "$engine" ]; then
+        failed=$((failed + 1))
+        echo "FAIL the page in Chromium: needs ../build/meshfix and $engine (apt-get install assimp-testmodels)"
+    else
+        suite "page in Chromium" node test/page.test.mjs "$chromium" build/page "$cli" "$engine" "$(dirname "$models")"
+    fi
+fi
 
 # npm pack, then a new project installs the tarball and uses it
 pack=$(mktemp -d)

@@ -37,6 +37,9 @@ has node || need+=(nodejs)
 has npm || need+=(npm)
 # the npm package (js/test.sh): meshfix.h compiled to WebAssembly
 has emcc || need+=(emscripten)
+# the npm package's browser page (js/test/page.test.mjs): Debian's Chromium,
+# headless, driven by puppeteer-core (js/package-lock.json)
+has chromium || need+=(chromium)
 # CMake and pkg-config consumers (tests/cmake/run.sh)
 has cmake || need+=(cmake)
 has pkg-config || need+=(pkg-config)

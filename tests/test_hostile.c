@@ -958,7 +958,7 @@ static const test_case tests[] = {
     {"fuzz: a small triangle far from its patch's first vertex has its area", test_small_triangle_far_from_its_patch},
 };
 
-int main(void)
+int main(int argc, char **argv)
 {
-    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), NULL);
+    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), argc > 1 ? argv[1] : NULL);
 }

@@ -300,7 +300,7 @@ static const test_case tests[] = {
     {"NaN SDF and bad arguments", test_bad_sdf_and_arguments},
 };
 
-int main(void)
+int main(int argc, char **argv)
 {
-    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), NULL);
+    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), argc > 1 ? argv[1] : NULL);
 }

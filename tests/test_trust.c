@@ -627,7 +627,7 @@ static const test_case tests[] = {
     {"head.stl cut into 500 patches, half reversed: a patch on a rough seam joins the head", test_head_cut},
 };
 
-int main(void)
+int main(int argc, char **argv)
 {
-    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), NULL);
+    return run_tests(tests, sizeof(tests) / sizeof(tests[0]), argc > 1 ? argv[1] : NULL);
 }
