@@ -124,7 +124,12 @@ demo: $(B)/meshfix $(B)/demo_mesh
 	@$(B)/demo_mesh $(B)/demo_input.obj
 	@echo
 	@echo "--- the plain flood fill (policy seed) follows its first triangle, one of the reversed 70%:"
-	@$(B)/meshfix --policy seed $(B)/demo_input.obj $(B)/demo_seed.obj | sed -n '/^repair/,$$p'
+	@# its last line, the library's summary, counts the triangles it turned; the line
+	@# printed says what that left: every closed shell consistent, and inside out
+	@$(B)/meshfix --policy seed $(B)/demo_input.obj $(B)/demo_seed.obj >$(B)/demo_seed.txt
+	@sed -n '/^repair/,$$p' $(B)/demo_seed.txt | sed '$$d'
+	@echo "$$(sed '$$!d' $(B)/demo_seed.txt), and left $$(sed -n '/^repair/,$$s/^  patches .*(closed \([0-9]*\), inside-out \([0-9]*\)).*/\2 of its \1 closed shells/p' \
+	    $(B)/demo_seed.txt) inside out: consistent now, and still wrong (a flood fill cannot tell out from in)"
 	@echo
 	@echo "--- meshfix's default (policy auto): each closed shell faces out:"
 	@$(B)/meshfix $(B)/demo_input.obj $(B)/demo_fixed.obj --mark $(B)/demo_marked.ply

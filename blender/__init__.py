@@ -69,10 +69,18 @@ joined vertices, open parts and gaps"""
     use_custom_normals: BoolProperty(
         name="Custom Normals as Evidence", default=True,
         description="Use the mesh's custom split normals (when it has them) as evidence of the outside")
+    inside: BoolProperty(
+        name="Inside", default=False,
+        description="Face the inside: every face the other way from what Outside leaves it, its custom "
+                    "normals too (as Blender's Recalculate Inside)")
+    select_flipped: BoolProperty(
+        name="Select Flipped Faces", default=False,
+        description="Select the faces this run reversed (the selection is replaced; with Select Doubtful "
+                    "Faces, both)")
     select_doubtful: BoolProperty(
         name="Select Doubtful Faces", default=False,
         description="Select the faces of patches whose verdict confidence is below 0.5 or the minimum "
-                    "confidence (the selection is replaced)")
+                    "confidence (the selection is replaced; with Select Flipped Faces, both)")
 
     @classmethod
     def poll(cls, context):
@@ -85,12 +93,20 @@ joined vertices, open parts and gaps"""
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
-        for name in ("policy", "weld_tolerance", "min_confidence", "use_custom_normals", "select_doubtful"):
+        for name in ("inside", "policy", "weld_tolerance", "min_confidence", "use_custom_normals",
+                     "select_flipped", "select_doubtful"):
             layout.prop(self, name)
 
     def _settings(self):
         return dict(policy=self.policy, weld_tolerance=self.weld_tolerance, min_confidence=self.min_confidence,
                     use_normals=self.use_custom_normals, threads=_threads())
+
+    def _selecting(self):
+        return self.select_flipped or self.select_doubtful
+
+    def _selection(self, d, turn):
+        """The faces to select: those reversed and/or those doubtful, as asked."""
+        return (turn & self.select_flipped) | (d.doubtful & self.select_doubtful)
 
     def _object_mode(self, context):
         done, results = set(), []
@@ -102,16 +118,18 @@ joined vertices, open parts and gaps"""
             before = repair.loop_vertices(me)
             normals = repair.corner_normals(me)
             d = repair.decide(me, None, **self._settings())
+            turn = d.turn(self.inside)
             bm = bmesh.new()
             bm.from_mesh(me)
-            flipped = repair.flip_bmesh(bm, d.flip)
-            if self.select_doubtful:
-                repair.select_faces_bmesh(bm, d.doubtful)
-            if flipped or self.select_doubtful:
+            flipped = repair.flip_bmesh(bm, turn)
+            if self._selecting():
+                repair.select_faces_bmesh(bm, self._selection(d, turn))
+            if flipped or self._selecting():
                 bm.to_mesh(me)
             bm.free()
-            if flipped and normals is not None:
-                repair.restore_corner_normals(me, normals, before)
+            if normals is not None and (flipped or self.inside):
+                repair.restore_corner_normals(me, repair.inside_normals(me, normals, d.in_scope) if self.inside
+                                              else normals, before)
             me.update()
             results.append((ob.name, d, flipped))
         return results
@@ -132,15 +150,17 @@ joined vertices, open parts and gaps"""
             before = repair.loop_vertices(me)
             normals = repair.corner_normals(me)
             d = repair.decide(me, scope, **self._settings())
+            turn = d.turn(self.inside)
             bm = bmesh.from_edit_mesh(me)
-            flipped = repair.flip_bmesh(bm, d.flip)
-            if self.select_doubtful:
-                repair.select_faces_bmesh(bm, d.doubtful)
+            flipped = repair.flip_bmesh(bm, turn)
+            if self._selecting():
+                repair.select_faces_bmesh(bm, self._selection(d, turn))
             bmesh.update_edit_mesh(me, loop_triangles=True, destructive=False)
-            if flipped and normals is not None:
+            if normals is not None and (flipped or self.inside):
                 # custom normals are set on the Mesh: the edit mesh is written out, mended and read back
                 ob.update_from_editmode()
-                repair.restore_corner_normals(me, normals, before)
+                repair.restore_corner_normals(me, repair.inside_normals(me, normals, d.in_scope) if self.inside
+                                              else normals, before)
                 bm.clear()
                 bm.from_mesh(me)
                 bmesh.update_edit_mesh(me, loop_triangles=True, destructive=True)
@@ -158,29 +178,31 @@ joined vertices, open parts and gaps"""
             return {'CANCELLED'}
         if len(results) > 1:
             for name, d, flipped in results:
-                self.report({'INFO'}, "%s: %s" % (name, mesh_line(d, flipped)))
-        self.report({'INFO'}, summary_line(results, self.select_doubtful))
+                self.report({'INFO'}, "%s: %s" % (name, mesh_line(d, flipped, self.inside)))
+        self.report({'INFO'}, summary_line(results, self.select_doubtful, self.inside, self.select_flipped))
         return {'FINISHED'}
 
 
-def mesh_line(d, flipped):
+def mesh_line(d, flipped, inside=False):
     """The library's summary of one mesh, with the faces (polygons) flipped when they are not its
-    triangles."""
+    triangles; with Inside, what was turned for it."""
     if d.report is None:
         return "no faces"
     text = d.report.summary
-    if flipped and flipped != d.report.triangles_flipped:
+    if inside:
+        text += "; Inside: %s reversed, every face the other way" % _count(flipped, "face", "faces")
+    elif flipped and flipped != d.report.triangles_flipped:
         text += " (%s)" % _count(flipped, "face", "faces")
     if d.split:
         text += "; %s split between the sides" % _count(d.split, "face", "faces")
     return text
 
 
-def summary_line(results, select_doubtful=False):
+def summary_line(results, select_doubtful=False, inside=False, select_flipped=False):
     """One mesh: its line; several (each reported on its own before): their counts summed."""
     doubtful = sum(int(np.count_nonzero(d.doubtful)) for _, d, _ in results)
     if len(results) == 1:
-        line = mesh_line(results[0][1], results[0][2])
+        line = mesh_line(results[0][1], results[0][2], inside)
     else:
         reports = [d.report for _, d, _ in results if d.report is not None]
         faces = sum(flipped for _, _, flipped in results)
@@ -192,6 +214,10 @@ def summary_line(results, select_doubtful=False):
         unsure = sum(r.patches_doubtful for r in reports)
         if unsure:
             line += "; %s doubtful" % _count(unsure, "patch", "patches")
+        if inside:
+            line += "; Inside"
+    if select_flipped:
+        line += "; %s selected" % _count(sum(f for _, _, f in results), "flipped face", "flipped faces")
     if select_doubtful:
         line += "; %s selected" % _count(doubtful, "doubtful face", "doubtful faces")
     return line
@@ -200,6 +226,7 @@ def summary_line(results, select_doubtful=False):
 def _menu(self, context):
     self.layout.separator()
     self.layout.operator(MESH_OT_meshfix_recalculate_outside.bl_idname)
+    self.layout.operator(MESH_OT_meshfix_recalculate_outside.bl_idname, text="Recalculate Inside (meshfix)").inside = True
 
 
 def register():

@@ -32,6 +32,11 @@ class Decision:
         self.report = None      # meshfix.Report, None when the scope has no triangles
         self.triangles = 0
 
+    def turn(self, inside=False):
+        """The polygons to reverse: those the library flipped (outside), or with inside every
+        polygon in scope the other way from that: the reverse of what outside leaves."""
+        return self.flip ^ self.in_scope if inside else self.flip.copy()
+
 
 def mesh_arrays(me, scope=None, use_normals=True):
     """The triangles of the polygons in scope (a bool per polygon, None: all) as the library
@@ -166,6 +171,17 @@ def old_loop_of_new(me, before_vertices):
         else:
             raise RuntimeError("meshfix: polygon %d changed its corners, not only their order" % p)
     return old
+
+
+def inside_normals(me, normals, in_scope):
+    """The corner normals with those of the polygons in scope negated: Inside turns every face
+    in scope the other way from Outside, its custom normals with it."""
+    totals = np.empty(len(me.polygons), np.int32)
+    me.polygons.foreach_get("loop_total", totals)
+    loop_in_scope = np.repeat(in_scope, totals)
+    out = normals.copy()
+    out[loop_in_scope] *= -1.0
+    return out
 
 
 def restore_corner_normals(me, normals, before_vertices):

@@ -1,8 +1,10 @@
 """Builds meshfix.h's implementation into the package as a shared library
 (meshfix/_libmeshfix*.so, loaded with ctypes: no Python headers involved).
 
-    pip install --no-build-isolation ./python     (offline: Debian's
-    python3-setuptools and python3-wheel do the build)
+    /usr/bin/python3 -m pip wheel --no-build-isolation --no-deps --no-index -w build/wheels ./python
+
+from the checkout, offline: Debian's python3-setuptools and python3-wheel do
+the build; README.md has the venv install that follows.
 
 The header is taken from MESHFIX_HEADER_DIR, else the directory above this
 one (the repository), else this directory."""

@@ -2,10 +2,12 @@
 # The Python module: builds it (python/build.sh), checks that
 # `python3 -c "import meshfix"` orients a NumPy mesh as the C library does,
 # runs the pytest suite (python/tests: the binding against a C program on
-# the real models of assimp-testmodels and occt-misc), and installs it with
-# pip into a virtual environment, offline. Prints "ok   name" / "FAIL name" /
-# "SKIP name: reason" lines (pytest: one line per test function, its cases
-# counted; one FAIL line per failing case); exits 1 when something failed.
+# the real models of assimp-testmodels and occt-misc), runs the READMEs'
+# install block as written (a wheel, a plain venv, offline) and their
+# python blocks in that venv. Prints "ok   name" / "FAIL name" / "SKIP name:
+# reason" lines (pytest: one line per test function, its cases counted; one
+# FAIL line per failing case), then "N passed, N failed"; exits 1 when
+# something failed.
 # Usage: python/test.sh [WORKDIR]   (default build/python-test, emptied first)
 # PYTHON: the interpreter (default /usr/bin/python3, Debian's, where
 # python3-numpy and python3-pytest live; a pyenv python3 first on PATH
@@ -32,11 +34,11 @@ check_log="$log"
 
 if ! command -v "$PYTHON" >/dev/null 2>&1; then
     echo "SKIP python: no $PYTHON (apt-get install python3 python3-numpy python3-pytest)"
-    exit 0
+    echo "$passed passed, $failed failed"; exit 0
 fi
 if ! "$PYTHON" -c "import numpy" >/dev/null 2>&1; then
     echo "SKIP python: $PYTHON has no NumPy (apt-get install python3-numpy; or set PYTHON)"
-    exit 0
+    echo "$passed passed, $failed failed"; exit 0
 fi
 
 check "python: python/build.sh builds the module with $CC (shared library + __init__.py)" \
@@ -102,47 +104,104 @@ for function, cases in tests.items():
         print("SKIP python: %s (%d case%s): %s" % (function, n, "" if n == 1 else "s", reason))
 EOF
         cat "$work/pytest_lines.txt"
-        grep -q '^FAIL' "$work/pytest_lines.txt" && failed=1
+        passed=$((passed + $(grep -c '^ok' "$work/pytest_lines.txt")))
+        failed=$((failed + $(grep -c '^FAIL' "$work/pytest_lines.txt")))
         if [ "$status" -ne 0 ] && ! grep -q '^FAIL' "$work/pytest_lines.txt"; then
             echo "FAIL python: pytest exited with $status"
             tail -20 "$work/pytest.txt" | sed 's/^/    /'
-            failed=1
+            failed=$((failed + 1))
         fi
     else
         echo "FAIL python: pytest wrote no results (exit status $status)"
         tail -20 "$work/pytest.txt" | sed 's/^/    /'
-        failed=1
+        failed=$((failed + 1))
     fi
 else
     echo "SKIP python: pytest suite: $PYTHON has no pytest (apt-get install python3-pytest)"
 fi
 
-# pip, offline: the pyproject.toml/setup.py build into a virtual environment
+# The READMEs' install block (README.md and python/README.md, the same
+# block), run line by line as written in a copy of the checkout (meshfix.h
+# and python/), offline, with none of this machine's pip configuration: a
+# wheel built by Debian's python3, a plain venv (no system site packages),
+# the wheel installed from the file. `venv/bin/pip install numpy` needs
+# PyPI, which this machine does not reach: in its place Debian's NumPy is
+# linked into the venv's site-packages (the package and its metadata, and
+# nothing else), as the user's own NumPy would be there.
 missing=""
-"$PYTHON" -m pip --version >/dev/null 2>&1 || missing="$missing python3-pip"
-"$PYTHON" -c "import ensurepip" >/dev/null 2>&1 || missing="$missing python3-venv"
-"$PYTHON" -c "import setuptools, wheel" >/dev/null 2>&1 || missing="$missing python3-setuptools python3-wheel"
+[ -x /usr/bin/python3 ] || missing="$missing python3"
+/usr/bin/python3 -m pip --version >/dev/null 2>&1 || missing="$missing python3-pip"
+/usr/bin/python3 -c "import ensurepip" >/dev/null 2>&1 || missing="$missing python3-venv"
+/usr/bin/python3 -c "import setuptools, wheel" >/dev/null 2>&1 || missing="$missing python3-setuptools python3-wheel"
+/usr/bin/python3 -c "import numpy" >/dev/null 2>&1 || missing="$missing python3-numpy"
 if [ -z "$missing" ]; then
-    pip_install() {
-        mkdir -p "$work/pip/src/python" &&
-            cp meshfix.h "$work/pip/src/" &&
-            cp -r python/pyproject.toml python/setup.py python/README.md python/meshfix "$work/pip/src/python/" &&
-            "$PYTHON" -m venv --system-site-packages --without-pip "$work/pip/venv" &&
-            "$work/pip/venv/bin/python" -m pip install --no-build-isolation --no-index \
-                --disable-pip-version-check "$work/pip/src/python" &&
-            (cd "$work" && "$work/pip/venv/bin/python" -c '
-import numpy as np, meshfix, sys
-assert meshfix.__file__.startswith(sys.prefix), meshfix.__file__
-positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
-indices = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 3, 2]], np.uint16)
-fixed, report = meshfix.orient(indices, positions.astype(np.float64))
-print(meshfix.__file__, meshfix.__version__, report.summary)
-assert report.triangles_flipped == 1 and fixed.dtype == np.uint16 and fixed[3].tolist() == [1, 2, 3]
-')
+    copy="$work/checkout"
+    mkdir -p "$copy/python"
+    cp meshfix.h README.md "$copy/"
+    cp -r python/pyproject.toml python/setup.py python/README.md python/meshfix "$copy/python/"
+    # a fresh machine's pip: no configuration file, no PIP_* settings
+    for v in $(env | sed -n 's/^\(PIP_[A-Z_]*\)=.*/\1/p'); do unset "$v"; done
+    export PIP_CONFIG_FILE=/dev/null PIP_DISABLE_PIP_VERSION_CHECK=1
+    numpy_into_venv() { # VENV: Debian's numpy linked into its site-packages
+        local site
+        site=$("$1/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])') &&
+            /usr/bin/python3 -c '
+import glob, os, sys, numpy
+where = os.path.dirname(numpy.__path__[0])
+meta = glob.glob(os.path.join(where, "numpy-*.egg-info")) + glob.glob(os.path.join(where, "numpy-*.dist-info"))
+assert meta, "no metadata of Debian numpy in %s" % where
+for path in [numpy.__path__[0]] + meta:
+    os.symlink(path, os.path.join(sys.argv[1], os.path.basename(path)))
+    print("linked", path)' "$site"
     }
-    check "python: pip install --no-build-isolation --no-index ./python into a venv, then import meshfix there" pip_install
+    readme_install() {
+        /usr/bin/python3 python/tests/readme.py install README.md python/README.md >"$work/install.sh" || return 1
+        local line
+        while IFS= read -r line; do
+            case "$line" in '' | '#'*) continue ;; esac
+            echo "\$ $line"
+            if [ "$line" = "venv/bin/pip install numpy" ]; then
+                (cd "$copy" && numpy_into_venv venv) || return 1
+            else
+                (cd "$copy" && bash -euc "$line") || return 1
+            fi
+        done <"$work/install.sh"
+        grep -qx 'include-system-site-packages = false' "$copy/venv/pyvenv.cfg" || {
+            echo "not a plain venv:"; cat "$copy/venv/pyvenv.cfg"; return 1; }
+        "$copy/venv/bin/pip" list | tee "$work/pip_list.txt"
+        grep -q '^meshfix  *0\.' "$work/pip_list.txt" && grep -q '^numpy ' "$work/pip_list.txt"
+    }
+    check "python: the READMEs' install block, run as written: a wheel by Debian's python3, a plain venv, pip install --no-index of the wheel" \
+        readme_install
+    installed_snippets() { # the READMEs' python blocks in that venv, on the meshfix it installed
+        (cd "$work" && "$copy/venv/bin/python" -c '
+import meshfix, sys
+assert meshfix.__file__.startswith(sys.prefix + "/lib/"), meshfix.__file__
+print(meshfix.__file__)' && "$copy/venv/bin/python" "$root/python/tests/readme.py" run "$root/README.md" "$root/python/README.md")
+    }
+    check "python: README.md's and python/README.md's python blocks run in that venv and print what they say" \
+        installed_snippets
+    without_numpy() { # the wheel's --no-index install stops at the missing NumPy, installs nothing
+        /usr/bin/python3 -m venv "$work/bare" || return 1
+        (cd "$copy" && "$work/bare/bin/pip" install --no-index build/wheels/meshfix-*.whl) >"$work/bare.txt" 2>&1
+        local status=$?
+        cat "$work/bare.txt"
+        [ "$status" -ne 0 ] && grep -q numpy "$work/bare.txt" && ! "$work/bare/bin/python" -c "import meshfix" 2>/dev/null
+    }
+    check "python: without NumPy in the venv, pip install --no-index of the wheel refuses, naming numpy" without_numpy
+    system_site() { # the READMEs' other venv: Debian's NumPy seen through --system-site-packages
+        /usr/bin/python3 -m venv --system-site-packages "$work/system" &&
+            (cd "$copy" && "$work/system/bin/pip" install --no-index build/wheels/meshfix-*.whl) &&
+            (cd "$work" && "$work/system/bin/python" -c '
+import meshfix, numpy, sys
+assert meshfix.__file__.startswith(sys.prefix + "/lib/"), meshfix.__file__
+assert not numpy.__file__.startswith(sys.prefix), numpy.__file__
+print(meshfix.__file__, numpy.__file__)')
+    }
+    check "python: a venv with --system-site-packages takes the same wheel, with Debian's NumPy" system_site
 else
-    echo "SKIP python: pip install ./python: missing$missing"
+    echo "SKIP python: the READMEs' install into a venv: missing$missing"
 fi
 
+echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -5,6 +5,8 @@
 # `= {0}` warns there, the caller's business), after an #include of
 # meshfix.h unless the snippet has its own; a snippet with main() is
 # linked against the implementation and run.
+# Then the command-line tool's options (built with make when missing):
+# every one the parser takes in --help, every one in --help in README.md.
 # Usage: tests/docs.sh OUTDIR; prints "ok"/"FAIL" lines, exits 1 on a failure.
 set -u
 cd "$(dirname "$0")/.."
@@ -32,6 +34,8 @@ $CC -std=c99 -c -I. "$out/implementation.c" -o "$out/implementation.o" || exit 1
 
 failed=0
 count=0
+npass=0
+nfail=0
 for snippet in "$out"/snippet_*.c; do
     name=$(basename "$snippet" .c)
     count=$((count + 1))
@@ -53,15 +57,54 @@ for snippet in "$out"/snippet_*.c; do
         fi
     fi
     if [ "$ok" -eq 1 ]; then
+        npass=$((npass + 1))
         echo "ok   docs: $name compiles as C99 and C++17$(grep -q 'int main' "$snippet" && echo ', and runs')"
     else
+        nfail=$((nfail + 1))
         echo "FAIL docs: $name"
         sed 's/^/    /' "$out/$name.c.log" "$out/$name.cpp.log" 2>/dev/null | head -20
         failed=1
     fi
 done
+# The tool's options: every option its parser takes (tools/meshfix/main.cpp,
+# each `a == "-..."`) is in `meshfix --help`, and every option of --help
+# (the option column of its lines that start with "  -") is in README.md's
+# options table (the first cell of its rows that start with "| `-").
+options_documented() {
+    [ -x build/meshfix ] && [ build/meshfix -nt tools/meshfix/main.cpp ] || ${MAKE:-make} -s build/meshfix >/dev/null || return 1
+    build/meshfix --help >"$out/help.txt" || return 1
+    sed -n 's/^  \(-.*\)/\1/p' "$out/help.txt" | sed 's/  .*//' | grep -oE '(^|[ ,])--?[a-z][a-z-]*' |
+        sed 's/^[ ,]*//' | sort -u >"$out/help_options.txt"
+    grep -oE 'a == "--?[a-z][a-z-]*"' tools/meshfix/main.cpp | sed 's/^a == "//; s/"$//' | sort -u >"$out/parser_options.txt"
+    sed -n 's/^| \(`-[^|]*\) |.*/\1/p' README.md | grep -oE '`--?[a-z][a-z-]*' | sed 's/^`//' | sort -u \
+        >"$out/readme_options.txt"
+    local ok=1 n
+    n=$(wc -l <"$out/help_options.txt")
+    [ "$n" -ge 10 ] || { echo "only $n options found in --help"; ok=0; }
+    for o in $(comm -23 "$out/parser_options.txt" "$out/help_options.txt"); do
+        echo "the tool takes $o, its --help does not say it"; ok=0
+    done
+    for o in $(comm -23 "$out/help_options.txt" "$out/readme_options.txt"); do
+        echo "--help has $o, README.md's options table does not"; ok=0
+    done
+    for o in $(comm -13 "$out/parser_options.txt" "$out/readme_options.txt"); do
+        echo "README.md's options table has $o, the tool does not take it"; ok=0
+    done
+    [ "$ok" -eq 1 ] && echo "$n options: $(tr '\n' ' ' <"$out/help_options.txt")"
+}
+if options_documented >"$out/options.log" 2>&1; then
+    npass=$((npass + 1))
+    echo "ok   docs: every option the tool takes is in --help, and every one in --help is in README.md's table ($(sed -n 's/ options:.*//p' "$out/options.log") options)"
+else
+    nfail=$((nfail + 1))
+    echo "FAIL docs: the tool's options, --help and README.md's table disagree"
+    sed 's/^/    /' "$out/options.log" | head -20
+    failed=1
+fi
 if [ "$count" -lt 8 ]; then
+    nfail=$((nfail + 1))
     echo "FAIL docs: only $count snippets found (README.md has at least 7, the header 1)"
     failed=1
 fi
+echo "$npass passed, $nfail failed"
 exit $failed

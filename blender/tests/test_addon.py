@@ -9,8 +9,10 @@ real models (assimp-testmodels, occt-misc), reverses a seeded half of their
 faces and checks that the operator flips exactly the faces the command-line
 tool flips on the same mesh (written to OBJ as Blender holds it), that UVs
 and custom normals stay on their corners, that one undo step restores the
-input, that edit mode changes only the selected faces and that the doubtful
-faces are the tool's; then scores Blender's own Recalculate Outside and the
+input, that edit mode changes only the selected faces, that the doubtful
+faces are the tool's, that select flipped selects the faces the library
+flipped, and that Inside is Outside reversed (closed meshes: every closed
+patch inside out); then scores Blender's own Recalculate Outside and the
 add-on against the winding the models shipped with. Prints "ok NAME",
 "FAIL NAME: why", "SKIP NAME (why)" and "N passed, N failed"."""
 
@@ -58,6 +60,9 @@ MODELS = [
 ]
 
 OP = "meshfix_recalculate_outside"
+# models whose meshes are closed: Inside must leave every closed patch of them inside out
+CLOSED = {"sh2.stl", "shape.stl", "TR12J_OCC.stl", "box.obj", "sh2.stl cut16", "shape.stl cut16",
+          "TR12J_OCC.stl cut64"}
 
 passed = failed = 0
 
@@ -468,6 +473,13 @@ def model_checks(m, args, rng):
             m.normal_degrees = worst
         check("%s: custom split normals stay on their corners" % m.name, normals_follow)
 
+    check("%s: select flipped faces selects the faces the library flipped (the module's decision, the tool's)" %
+          m.name, flipped_selected, m, objects, scrambled, start, cli)
+    check("%s: select flipped and doubtful faces together select both" % m.name,
+          both_selected, objects, scrambled, start, cli)
+    check("%s: Inside turns every face the other way from Outside%s" % (
+        m.name, ", custom normals too" if m.has_normals else ""), inside_check, m, objects, scrambled, start, cli)
+
     # the scores: % of faces facing as shipped after the repair of the scrambled copy, and faces
     # turned on the shipped (correct) input
     def score(run):
@@ -487,6 +499,95 @@ def model_checks(m, args, rng):
     m.object_names = [o.name for o in objects]
     m.scrambled_names = [c.name for c in scrambled]
     return True
+
+
+def selected_faces(me):
+    s = np.empty(len(me.polygons), bool)
+    me.polygons.foreach_get("select", s)
+    return s
+
+
+def closed_facts(me):
+    """The library's facts on the mesh as it is (meshfix.inspect): (patches, closed, inside out)."""
+    from meshfix_blender import meshfix, repair
+    indices, positions, _, _ = repair.mesh_arrays(me, None, False)
+    facts = meshfix.inspect(indices, positions).mesh
+    return facts.patches, facts.patches_closed, facts.patches_inside_out
+
+
+def flipped_selected(m, objects, scrambled, start, cli):
+    """select_flipped alone: the selection is exactly the faces reversed, which are the faces the
+    library flipped: repair.decide (the module, as the operator calls it) and the tool alike."""
+    from meshfix_blender import repair
+    put(objects, scrambled)
+    decided = [repair.decide(o.data, None, threads=2) for o in objects]
+    run_addon(objects, select_flipped=True)
+    total = 0
+    for o, s, c, d in zip(objects, start, cli, decided):
+        sel, turned = selected_faces(o.data), reversed_from(o.data, s)
+        assert np.array_equal(sel, turned), "%d faces selected, %d reversed, %d differ" % (
+            sel.sum(), turned.sum(), np.count_nonzero(sel != turned))
+        assert np.array_equal(sel, d.flip), "selected %d, the library flipped %d" % (sel.sum(), d.flip.sum())
+        assert np.array_equal(sel, c[0]), "selected %d, the tool flipped %d" % (sel.sum(), c[0].sum())
+        total += int(sel.sum())
+    assert total > 0, "nothing flipped, nothing selected"
+    say("#    %s: %d flipped faces selected" % (m.name, total))
+
+
+def both_selected(objects, scrambled, start, cli):
+    put(objects, scrambled)
+    run_addon(objects, select_flipped=True, select_doubtful=True)
+    for o, s, c in zip(objects, start, cli):
+        sel = selected_faces(o.data)
+        want = reversed_from(o.data, s) | c[1]
+        assert np.array_equal(sel, want), "selected %d, flipped or doubtful %d" % (sel.sum(), want.sum())
+
+
+def inside_check(m, objects, scrambled, start, cli):
+    """Inside on the scrambled mesh: every face wound against Outside's result (and, with custom
+    normals, each corner's normal the negation of Outside's, but around zero-area faces); the faces reversed are the ones the
+    library did not flip, and select flipped selects them; on a closed mesh the library then finds
+    every closed patch inside out (Outside: none)."""
+    put(objects, scrambled)
+    run_addon(objects)
+    outside = [winding(o.data) for o in objects]
+    outside_normals = [corner_values(o.data, "normal") if o.data.has_custom_normals else None for o in objects]
+    outside_facts = [closed_facts(o.data) for o in objects]
+    put(objects, scrambled)
+    run_addon(objects, inside=True, select_flipped=True)
+    closed = 0
+    for o, w, s, c, n, before in zip(objects, outside, start, cli, outside_normals, outside_facts):
+        against = reversed_from(o.data, w)
+        assert against.all(), "%d of %d faces face as Outside left them" % (np.count_nonzero(~against), len(against))
+        turned = reversed_from(o.data, s)
+        assert np.array_equal(turned, ~c[0]), "%d faces reversed, %d not flipped by the tool" % (
+            turned.sum(), np.count_nonzero(~c[0]))
+        assert np.array_equal(selected_faces(o.data), turned), "the selection is not the faces reversed"
+        if n is not None:
+            # but at the vertices of zero-area faces: Blender builds the normal space of a corner
+            # from its fan of faces, and with a face of no area in it, it cannot always hold the
+            # negated normal (2CylinderEngine, scrambled with seed 1: 18 of 195,951 corners)
+            a = corner_values(o.data, "normal")
+            a, b = (x / np.maximum(np.linalg.norm(x, axis=1), 1e-12)[:, None] for x in (a, -n))
+            area = np.empty(len(o.data.polygons), np.float32)
+            o.data.polygons.foreach_get("area", area)
+            starts, totals = layout(o.data)
+            vertex = loop_vertices(o.data)
+            degenerate = np.zeros(len(o.data.vertices), bool)
+            degenerate[vertex[np.repeat(area == 0, totals)]] = True
+            kept = ~degenerate[vertex[corner_keys(o.data)]]
+            cos = np.clip(np.sum(a * b, axis=1), -1.0, 1.0)[kept]
+            worst = float(np.degrees(np.arccos(cos.min()))) if cos.size else 0.0
+            assert worst < 1.0, "a corner normal is %.3f degrees from the negation of Outside's" % worst
+        patches, closed_patches, inside_out = closed_facts(o.data)
+        if patches and closed_patches == patches:
+            assert before[2] == 0, "Outside left %d closed patches inside out" % before[2]
+            assert inside_out == closed_patches, "Inside: %d of %d closed patches inside out" % (
+                inside_out, closed_patches)
+            closed += closed_patches
+    say("#    %s: Inside is Outside reversed; %d closed patches, all inside out after Inside" % (m.name, closed))
+    if m.name in CLOSED:
+        assert closed > 0, "a closed model, and no closed mesh found"
 
 
 def live(m):
@@ -527,10 +628,11 @@ def edit_undo_check(m):
     assert after == 0, "one undo in edit mode left %d faces flipped" % after
 
 
-def edit_selection_check(m, args, hide=False):
+def edit_selection_check(m, args, hide=False, inside=False):
     """Edit mode on a selection: the faces on one side of the middle, the others untouched; the
     selected ones flip as the tool flips a file of only them. hide: those faces hidden instead, none
-    selected: the visible ones are repaired."""
+    selected: the visible ones are repaired. inside: with Inside and Select Flipped Faces, the
+    selected faces the tool does not flip are the ones reversed, and the selection becomes them."""
     objects, scrambled = live(m)
     put(objects, scrambled)
     total = chosen = flipped_inside = 0
@@ -559,11 +661,15 @@ def edit_selection_check(m, args, hide=False):
     select_only(objects)
     bpy.ops.object.mode_set(mode='EDIT')
     bpy.ops.mesh.select_mode(type='FACE')
-    assert bpy.ops.mesh.meshfix_recalculate_outside('EXEC_DEFAULT') == {'FINISHED'}
+    options = dict(inside=True, select_flipped=True) if inside else {}
+    assert bpy.ops.mesh.meshfix_recalculate_outside('EXEC_DEFAULT', **options) == {'FINISHED'}
     bpy.ops.object.mode_set(mode='OBJECT')
     for o, r, mask, c, before in zip(objects, reference, masks, cli, normals):
         flips = reversed_from(o.data, r)
-        if before is not None:  # edit mode sets them on the mesh and reads the edit mesh back
+        if inside:
+            c = mask & ~c
+            assert np.array_equal(selected_faces(o.data), flips), "the selection is not the faces reversed"
+        elif before is not None:  # edit mode sets them on the mesh and reads the edit mesh back
             after = corner_values(o.data, "normal")
             a, b = (x / np.maximum(np.linalg.norm(x, axis=1), 1e-12)[:, None] for x in (before, after))
             turned = float(np.degrees(np.arccos(np.clip(np.sum(a * b, axis=1), -1.0, 1.0).min())))
@@ -669,6 +775,9 @@ def main():
         if name == "sh2.stl":
             check("%s: edit mode with nothing selected leaves the hidden faces, as the tool does on the others" % name,
                   edit_selection_check, m, args, True)
+        if name in ("sh2.stl", "spider.obj"):
+            check("%s: edit mode, Inside: only the selected faces change, those the tool does not flip; selected after" %
+                  name, edit_selection_check, m, args, False, True)
         if getattr(m, "doubtful", 0) and not doubtful_checked:
             doubtful_checked = check("%s: minimum confidence 0.99 selects at least the faces doubtful at 0.5" % name,
                                      min_confidence_check, m)

@@ -360,9 +360,12 @@ function meshfix(options) {
             });
         });
         report.summary = gltfSummary(report);
-        logger.info(`meshfix: ${report.summary}`);
+        // said once: to onReport when given (the logger has it at debug
+        // level), else through the logger at info level
+        const say = options.onReport ? (text) => logger.debug(text) : (text) => logger.info(text);
+        say(`meshfix: ${report.summary}`);
         for (const node of report.mirroredNodes)
-            logger.info(`meshfix: node "${gltfName(root.listNodes()[node.index], node.index)}" mirrors its mesh (determinant ${node.determinant.toPrecision(3)}): renderers reverse its winding, as the spec says; left as it is`);
+            say(`meshfix: node "${gltfName(root.listNodes()[node.index], node.index)}" mirrors its mesh (determinant ${node.determinant.toPrecision(3)}): renderers reverse its winding, as the spec says; left as it is`);
         if (options.onReport)
             options.onReport(report);
     };

@@ -305,5 +305,55 @@ await test('transform: policy "normals" refuses the meshes without NORMAL (NORMA
     return problems;
 });
 
+// What a run prints, line by line: console's methods caught while the
+// transform runs (glTF-Transform's Logger writes through console.info,
+// .debug, .warn and .error).
+async function printed(document, options) {
+    const lines = [];
+    const saved = {};
+    for (const method of ['log', 'info', 'debug', 'warn', 'error']) {
+        saved[method] = console[method];
+        console[method] = (...args) => lines.push(...args.map(String).join(' ').split('\n'));
+    }
+    try {
+        await document.transform(meshfix(options));
+    } finally {
+        Object.assign(console, saved);
+    }
+    return lines;
+}
+
+await test('transform: the summary is said once: the README\'s onReport printing it, the logger at info level (glTF-Transform\'s default)', async () => {
+    let summary = null;
+    const document = build().setLogger(new Logger(Logger.Verbosity.INFO));
+    const lines = await printed(document, { onReport: (r) => { summary = r.summary; console.log(r.summary); } });
+    const problems = [];
+    const saying = lines.filter((l) => summary !== null && l.includes(summary));
+    if (summary === null || !/mirrored node/.test(summary))
+        problems.push(`summary: ${summary}`);
+    if (saying.length !== 1)
+        problems.push(`${saying.length} lines say the summary:`, ...lines);
+    if (lines.length !== 1)
+        problems.push(`${lines.length} lines printed, 1 expected:`, ...lines);
+    return problems;
+});
+
+await test('transform: without onReport, the logger says the summary once at info level, and a line per mirrored node', async () => {
+    const { report: r } = await run(build(), {});
+    const lines = await printed(build().setLogger(new Logger(Logger.Verbosity.INFO)), {});
+    const problems = [];
+    if (lines.filter((l) => l === `meshfix: ${r.summary}`).length !== 1)
+        problems.push(`the summary ${JSON.stringify(r.summary)} not said once:`, ...lines);
+    const nodes = lines.filter((l) => /^meshfix: node ".*" mirrors its mesh/.test(l));
+    if (r.mirroredNodes.length < 1 || nodes.length !== r.mirroredNodes.length)
+        problems.push(`${nodes.length} mirrored-node lines, ${r.mirroredNodes.length} mirrored nodes`);
+    if (lines.length !== 1 + r.mirroredNodes.length)
+        problems.push(`${lines.length} lines:`, ...lines);
+    const quiet = await printed(build().setLogger(new Logger(Logger.Verbosity.WARN)), {});
+    if (quiet.length !== 0)
+        problems.push('at warn level:', ...quiet);
+    return problems;
+});
+
 console.log(`transform: ${failed()} failed`);
 process.exit(failed() ? 1 : 0);

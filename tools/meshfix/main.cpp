@@ -56,8 +56,9 @@ const char *const usage_text =
     "  -o, --output-dir DIRECTORY   where several inputs go (created if missing)\n"
     "  -j, --jobs N      files repaired at once (default: one per core)\n"
     "  --progress        a progress line on stderr (on by default when stderr is a terminal)\n"
-    "  --quiet           no report on stdout\n"
-    "  --help, --version\n"
+    "  -q, --quiet       no report on stdout\n"
+    "  -h, --help        this text\n"
+    "  --version         the version, and whether this build reads glTF and writes PNG\n"
     "\n"
     "Exit status: 0 clean or repaired; 1 bad arguments, or a file could not be read or written;\n"
     "2 the library refused a mesh; 3 (--check) something is wrong.\n";
