@@ -64,7 +64,7 @@ static unsigned int whole_tree_built(meshfix__bvh *bvh, const meshfix__mesh *m, 
         return MESHFIX__NONE;
     if (!sah_only)
         return meshfix__unit_tree(bvh, m, 0);
-    return bvh->unit_root[0] = meshfix__sah_tree(bvh, m, bvh->unit_first[0], bvh->unit_first[1]);
+    return meshfix__build_unit_by(bvh, m, 0, NULL, MESHFIX__BUILD_SAH);
 }
 
 static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena,

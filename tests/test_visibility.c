@@ -876,18 +876,18 @@ typedef struct tree_facts {
 
 static void walk_tree(const meshfix__bvh *b, unsigned int node, size_t depth, tree_facts *f)
 {
-    const meshfix__node *n = &b->nodes[node];
+    const meshfix__wide *n = &b->nodes[node];
     int c, k;
     f->nodes++;
     f->deepest = depth > f->deepest ? depth : f->deepest;
-    for (c = 0; c < MESHFIX__WIDTH; ++c) {
+    for (c = 0; c < MESHFIX__WIDE; ++c) {
         unsigned int i;
-        if (n->count[c] == MESHFIX__EMPTY)
-            continue;
-        if (n->count[c] == 0) {
+        if (n->inner & (1u << c)) {
             walk_tree(b, n->child[c], depth + 1, f);
             continue;
         }
+        if (!(n->leaves & (1u << c)))
+            continue;
         for (i = n->child[c]; i < n->child[c] + n->count[c]; ++i) {
             f->seen[i]++;
             for (k = 0; k < 9; ++k)
@@ -933,11 +933,12 @@ static void check_tree(const char *builder, const meshfix__bvh *bvh, unsigned in
         for (slot = 0; slot < bvh->count; ++slot) {
             /* the leaves' own test, one slot at a time: the same float
                operations even where -ffast-math reorders the scalar test */
-            float hit_t[4];
-            int zeros[4];
-            if (meshfix__hit_slots(&ray, bvh->corners + 9 * slot, 1, hit_t, zeros)) {
-                t_brute = hit_t[0] < t_brute ? hit_t[0] : t_brute;
-                meshfix__count_crossing(&crossings, hit_t[0], zeros[0]);
+            float hit_t[MESHFIX__WIDE];
+            int zeros[MESHFIX__WIDE];
+            unsigned int lane = (unsigned int)(slot % MESHFIX__WIDE);
+            if (meshfix__lanes_simd(&ray, &bvh->blocks[slot / MESHFIX__WIDE], 1u << lane, hit_t, zeros)) {
+                t_brute = hit_t[lane] < t_brute ? hit_t[lane] : t_brute;
+                meshfix__count_crossing(&crossings, hit_t[lane], zeros[lane]);
             }
         }
         hits_brute = (crossings.halves + 1) / 2;
