@@ -3518,19 +3518,22 @@ MESHFIX__INLINE_ALWAYS static unsigned int meshfix__boxes_sse(const meshfix__ray
 MESHFIX__INLINE_ALWAYS static unsigned int meshfix__lanes_half_sse(const meshfix__ray *r, const meshfix__leaf_block *k,
                                                                    int half, unsigned int want, float *t)
 {
-    __m128 p[3][3], *a = p[0], *b = p[1], *c = p[2], ax, ay, bx, by, cx, cy, u, v, w, det;
+    /* the rows in the ray's axis order, loaded by index: the same
+       differences and products as through an array, none spilled */
+    const float(*rows)[MESHFIX__WIDE] = k->corner;
+    __m128 ox = _mm_set1_ps(r->origin[r->kx]), oy = _mm_set1_ps(r->origin[r->ky]);
+    __m128 oz = _mm_set1_ps(r->origin[r->kz]), az, bz, cz, ax, ay, bx, by, cx, cy, u, v, w, det;
     __m128 zero = _mm_setzero_ps(), sx = _mm_set1_ps(r->shear[0]), sy = _mm_set1_ps(r->shear[1]);
     unsigned int mask, edge;
-    int j, m;
-    for (j = 0; j < 3; ++j)
-        for (m = 0; m < 3; ++m)
-            p[j][m] = _mm_sub_ps(_mm_loadu_ps(k->corner[3 * j + m] + half), _mm_set1_ps(r->origin[m]));
-    ax = _mm_sub_ps(a[r->kx], _mm_mul_ps(sx, a[r->kz]));
-    ay = _mm_sub_ps(a[r->ky], _mm_mul_ps(sy, a[r->kz]));
-    bx = _mm_sub_ps(b[r->kx], _mm_mul_ps(sx, b[r->kz]));
-    by = _mm_sub_ps(b[r->ky], _mm_mul_ps(sy, b[r->kz]));
-    cx = _mm_sub_ps(c[r->kx], _mm_mul_ps(sx, c[r->kz]));
-    cy = _mm_sub_ps(c[r->ky], _mm_mul_ps(sy, c[r->kz]));
+    az = _mm_sub_ps(_mm_loadu_ps(rows[r->kz] + half), oz);
+    bz = _mm_sub_ps(_mm_loadu_ps(rows[3 + r->kz] + half), oz);
+    cz = _mm_sub_ps(_mm_loadu_ps(rows[6 + r->kz] + half), oz);
+    ax = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(rows[r->kx] + half), ox), _mm_mul_ps(sx, az));
+    ay = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(rows[r->ky] + half), oy), _mm_mul_ps(sy, az));
+    bx = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(rows[3 + r->kx] + half), ox), _mm_mul_ps(sx, bz));
+    by = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(rows[3 + r->ky] + half), oy), _mm_mul_ps(sy, bz));
+    cx = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(rows[6 + r->kx] + half), ox), _mm_mul_ps(sx, cz));
+    cy = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(rows[6 + r->ky] + half), oy), _mm_mul_ps(sy, cz));
     u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
     v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
     w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
@@ -3544,8 +3547,9 @@ MESHFIX__INLINE_ALWAYS static unsigned int meshfix__lanes_half_sse(const meshfix
     mask &= ~(unsigned int)_mm_movemask_ps(_mm_cmpeq_ps(det, zero)) & want & ~edge;
     if (mask != 0) {
         __m128 sz = _mm_set1_ps(r->shear[2]), nonzero = _mm_cmpneq_ps(det, zero), dist;
-        __m128 az = _mm_mul_ps(sz, a[r->kz]), bz = _mm_mul_ps(sz, b[r->kz]), cz = _mm_mul_ps(sz, c[r->kz]);
-        __m128 distance = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(v, bz)), _mm_mul_ps(w, cz));
+        __m128 distance = _mm_add_ps(
+            _mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(sz, az)), _mm_mul_ps(v, _mm_mul_ps(sz, bz))),
+            _mm_mul_ps(w, _mm_mul_ps(sz, cz)));
         /* a lane that fails is not divided by 0: its det is replaced */
         dist = _mm_div_ps(distance,
                           _mm_or_ps(_mm_and_ps(nonzero, det), _mm_andnot_ps(nonzero, _mm_set1_ps(1.0f))));
@@ -3696,19 +3700,22 @@ MESHFIX__AVX2_INLINE unsigned int meshfix__lanes_avx2(const meshfix__ray *r, con
                                                       unsigned int want, float t[MESHFIX__WIDE],
                                                       int zeros[MESHFIX__WIDE])
 {
-    __m256 p[3][3], *a = p[0], *b = p[1], *c = p[2], ax, ay, bx, by, cx, cy, u, v, w, det;
+    /* the rows in the ray's axis order, loaded by index: the same
+       differences and products as through an array, none spilled */
+    const float(*rows)[MESHFIX__WIDE] = k->corner;
+    __m256 ox = _mm256_set1_ps(r->origin[r->kx]), oy = _mm256_set1_ps(r->origin[r->ky]);
+    __m256 oz = _mm256_set1_ps(r->origin[r->kz]), az, bz, cz, ax, ay, bx, by, cx, cy, u, v, w, det;
     __m256 zero = _mm256_setzero_ps(), sx = _mm256_set1_ps(r->shear[0]), sy = _mm256_set1_ps(r->shear[1]);
     unsigned int mask, edge, i;
-    int j, m;
-    for (j = 0; j < 3; ++j)
-        for (m = 0; m < 3; ++m)
-            p[j][m] = _mm256_sub_ps(_mm256_loadu_ps(k->corner[3 * j + m]), _mm256_set1_ps(r->origin[m]));
-    ax = _mm256_sub_ps(a[r->kx], _mm256_mul_ps(sx, a[r->kz]));
-    ay = _mm256_sub_ps(a[r->ky], _mm256_mul_ps(sy, a[r->kz]));
-    bx = _mm256_sub_ps(b[r->kx], _mm256_mul_ps(sx, b[r->kz]));
-    by = _mm256_sub_ps(b[r->ky], _mm256_mul_ps(sy, b[r->kz]));
-    cx = _mm256_sub_ps(c[r->kx], _mm256_mul_ps(sx, c[r->kz]));
-    cy = _mm256_sub_ps(c[r->ky], _mm256_mul_ps(sy, c[r->kz]));
+    az = _mm256_sub_ps(_mm256_loadu_ps(rows[r->kz]), oz);
+    bz = _mm256_sub_ps(_mm256_loadu_ps(rows[3 + r->kz]), oz);
+    cz = _mm256_sub_ps(_mm256_loadu_ps(rows[6 + r->kz]), oz);
+    ax = _mm256_sub_ps(_mm256_sub_ps(_mm256_loadu_ps(rows[r->kx]), ox), _mm256_mul_ps(sx, az));
+    ay = _mm256_sub_ps(_mm256_sub_ps(_mm256_loadu_ps(rows[r->ky]), oy), _mm256_mul_ps(sy, az));
+    bx = _mm256_sub_ps(_mm256_sub_ps(_mm256_loadu_ps(rows[3 + r->kx]), ox), _mm256_mul_ps(sx, bz));
+    by = _mm256_sub_ps(_mm256_sub_ps(_mm256_loadu_ps(rows[3 + r->ky]), oy), _mm256_mul_ps(sy, bz));
+    cx = _mm256_sub_ps(_mm256_sub_ps(_mm256_loadu_ps(rows[6 + r->kx]), ox), _mm256_mul_ps(sx, cz));
+    cy = _mm256_sub_ps(_mm256_sub_ps(_mm256_loadu_ps(rows[6 + r->ky]), oy), _mm256_mul_ps(sy, cz));
     u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
     v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
     w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
@@ -3725,9 +3732,9 @@ MESHFIX__AVX2_INLINE unsigned int meshfix__lanes_avx2(const meshfix__ray *r, con
     mask &= ~(unsigned int)_mm256_movemask_ps(_mm256_cmp_ps(det, zero, _CMP_EQ_OQ)) & want & ~edge;
     if (mask != 0) {
         __m256 sz = _mm256_set1_ps(r->shear[2]), nonzero = _mm256_cmp_ps(det, zero, _CMP_NEQ_OQ), dist;
-        __m256 az = _mm256_mul_ps(sz, a[r->kz]), bz = _mm256_mul_ps(sz, b[r->kz]), cz = _mm256_mul_ps(sz, c[r->kz]);
-        __m256 distance =
-            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, az), _mm256_mul_ps(v, bz)), _mm256_mul_ps(w, cz));
+        __m256 distance = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, _mm256_mul_ps(sz, az)),
+                                                      _mm256_mul_ps(v, _mm256_mul_ps(sz, bz))),
+                                        _mm256_mul_ps(w, _mm256_mul_ps(sz, cz)));
         /* a lane that fails is not divided by 0: its det is replaced */
         dist = _mm256_div_ps(distance, _mm256_blendv_ps(_mm256_set1_ps(1.0f), det, nonzero));
         mask &= (unsigned int)_mm256_movemask_ps(_mm256_and_ps(_mm256_cmp_ps(dist, _mm256_set1_ps(r->t_min), _CMP_GT_OQ),
