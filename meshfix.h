@@ -3109,6 +3109,7 @@ MESHFIX__PRIVATE unsigned int meshfix__morton_tree(meshfix__bvh *b, const meshfi
 {
     meshfix__morton_build k;
     float high[3];
+    double extent = 0.0;
     unsigned int chunk;
     int c;
     k.b = b;
@@ -3132,8 +3133,12 @@ MESHFIX__PRIVATE unsigned int meshfix__morton_tree(meshfix__bvh *b, const meshfi
             k.low[c] = k.chunk_box[chunk][c] < k.low[c] ? k.chunk_box[chunk][c] : k.low[c];
             high[c] = k.chunk_box[chunk][3 + c] > high[c] ? k.chunk_box[chunk][3 + c] : high[c];
         }
-        k.scale[c] = high[c] > k.low[c] ? 1023.0 / ((double)high[c] - (double)k.low[c]) : 0.0;
+        extent = (double)high[c] - (double)k.low[c] > extent ? (double)high[c] - (double)k.low[c] : extent;
     }
+    /* one scale for the three axes: the codes' cells are cubes whatever
+       the box's shape (a scale per axis stretched them with it) */
+    for (c = 0; c < 3; ++c)
+        k.scale[c] = extent > 0.0 ? 1023.0 / extent : 0.0;
     meshfix__morton_phase(&k, MESHFIX__BUILD_CODES, parallel);
     meshfix__radix_sort(k.codes, k.slot_of, k.scratch, k.scratch + k.n, k.n);
     /* the triangles in code order: the old order waits in the scratch */
