@@ -2941,6 +2941,7 @@ typedef struct meshfix__morton_build {
     float low[3];
     double scale[3];
     unsigned int clusters, *starts, *ids, *bases; /* cluster c: slots from starts[c], nodes from bases[c] */
+    unsigned int *ends;             /* cluster c's nodes end (as built; then where they moved) */
     float *cluster_slots;
     int phase;
 } meshfix__morton_build;
@@ -2983,6 +2984,7 @@ MESHFIX__PRIVATE void meshfix__cluster_subtree(meshfix__morton_build *k, unsigne
     sub.leaf = MESHFIX__LEAF;
     meshfix__build_nodes(&sub, k->b->nodes, 0, size);
     MESHFIX_ASSERT(sub.next_node - k->bases[c] <= meshfix__wide_budget(size));
+    k->ends[c] = sub.next_node;
     for (i = 0; i < size; ++i) {
         MESHFIX_MEMCPY(k->slots + 9 * (size_t)(start + i), corners + 9 * ids[i], 9 * sizeof(float));
         k->order[start + i] = triangles[ids[i]];
@@ -3043,6 +3045,50 @@ MESHFIX__PRIVATE void meshfix__morton_phase(meshfix__morton_build *k, int phase,
             meshfix__morton_chunk(k, chunk);
 }
 
+/* The cluster whose nodes started at `node` (as built): the last whose
+   start is not above it (those without nodes share the next one's). */
+MESHFIX__PRIVATE unsigned int meshfix__cluster_at(const meshfix__morton_build *k, unsigned int node)
+{
+    unsigned int lo = 0, hi = k->clusters; /* bases[lo] <= node < bases[hi] */
+    while (lo + 1 < hi) {
+        unsigned int mid = lo + (hi - lo) / 2;
+        if (k->bases[mid] <= node)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* Moves the clusters' nodes together after the tree over them, in
+   cluster order, and points the tree at them: each was built in a room of
+   its bound, about four times what it takes, and rays that crossed the
+   gaps missed the TLB and the caches (on the 1M sphere with 5% more nodes
+   a ray than binned SAH, 30% less its rate). Nodes only move down, so a
+   forward copy is safe. */
+MESHFIX__PRIVATE void meshfix__pack_clusters(meshfix__morton_build *k, unsigned int root, unsigned int top_end)
+{
+    meshfix__wide *nodes = k->b->nodes;
+    unsigned int c, node, next = top_end, used, delta;
+    int i;
+    for (c = 0; c < k->clusters; ++c) {
+        used = k->ends[c] - k->bases[c];
+        delta = k->bases[c] - next;
+        for (node = next; node < next + used; ++node) {
+            nodes[node] = nodes[node + delta];
+            for (i = 0; i < MESHFIX__WIDE; ++i)
+                if (nodes[node].inner & (1u << i))
+                    nodes[node].child[i] -= delta;
+        }
+        k->ends[c] = next; /* where its root is now */
+        next += used;
+    }
+    for (node = root; node < top_end; ++node)
+        for (i = 0; i < MESHFIX__WIDE; ++i)
+            if ((nodes[node].inner & (1u << i)) && nodes[node].child[i] >= top_end)
+                nodes[node].child[i] = k->ends[meshfix__cluster_at(k, nodes[node].child[i])];
+}
+
 /* The tree over the clusters (binned SAH, a cluster a leaf) from node
    `base` on, whose leaves then point at the clusters' triangles (a
    leaf's worth) or the SAH trees under them, each in the nodes budgeted
@@ -3078,9 +3124,10 @@ MESHFIX__PRIVATE unsigned int meshfix__cluster_tree(meshfix__morton_build *k, un
     /* the clusters' slots are read: their first floats hold where each
        one's nodes start, one after the other */
     k->bases = (unsigned int *)(void *)k->cluster_slots;
+    k->ends = k->bases + k->clusters;
     for (c = 0, next = top_end; c < k->clusters; ++c) {
         unsigned int size = k->starts[c + 1] - k->starts[c];
-        k->bases[c] = next;
+        k->bases[c] = k->ends[c] = next;
         next += size > MESHFIX__LEAF ? meshfix__wide_budget(size) : 0u;
     }
     MESHFIX_ASSERT(next - base <= k->n / 2 + 2);
@@ -3096,6 +3143,7 @@ MESHFIX__PRIVATE unsigned int meshfix__cluster_tree(meshfix__morton_build *k, un
                                size <= MESHFIX__LEAF ? size : 0u);
         }
     meshfix__morton_phase(k, MESHFIX__BUILD_SUBTREES, parallel);
+    meshfix__pack_clusters(k, root, top_end);
     return root;
 }
 
