@@ -561,7 +561,7 @@ static void test_deep_tree(void)
             q.skip = MESHFIX__NONE;
             meshfix__trace(&bvh, root, &ray, &q);
         }
-    free(arena.base);
+    free_arena(&arena);
     for (p = 0; p < POLICIES; ++p) {
         o = policy_options(p);
         CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL),

@@ -860,7 +860,7 @@ static void test_watertight_rays(void)
     }
     printf("    %lu rays through vertices and edges: %lu wrong\n", (unsigned long)rays, (unsigned long)bad);
     CHECK_EQ(bad, 0);
-    free(arena.base);
+    free_arena(&arena);
     free(units);
     free(block);
     mio_free(&g);
@@ -1018,9 +1018,9 @@ static void test_trees_against_brute_force(void)
         check_tree(model == 0 ? "the library's (binned SAH)" : "the library's (Morton clusters)", &bvh,
                    whole_tree(&bvh, &m, &arena, units), 7 + (unsigned long long)model);
         CHECK((model == 0) == (bvh.count < MESHFIX__MORTON_MIN));
-        free(arena.base);
+        free_arena(&arena);
         check_tree("binned SAH", &bvh, whole_tree_built(&bvh, &m, &arena, units, 1), 7 + (unsigned long long)model);
-        free(arena.base);
+        free_arena(&arena);
         free(units);
         free(block);
         mio_free(&g);

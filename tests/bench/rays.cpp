@@ -161,7 +161,7 @@ struct MeshfixTree {
     }
     void release()
     {
-        std::free(arena.base);
+        free_arena(&arena);
         std::memset(&arena, 0, sizeof(arena));
         root = MESHFIX__NONE;
     }
