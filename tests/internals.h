@@ -29,19 +29,41 @@ static unsigned char *bind_mesh(meshfix__mesh *m, const meshfix_options *o, cons
 }
 
 /* An arena of its own for the trees of a mesh of `triangles` in one
-   unit, laid out as the library lays out its own (free arena->base). */
+   unit, laid out as the library lays out its own, its base on a cache
+   line as the library's is (malloc's 16 bytes put every node across five
+   lines); free it with free_arena. */
 static void make_arena(meshfix__arena *arena, size_t triangles)
 {
     meshfix__geometry_counts counts;
+    unsigned char *raw;
+    size_t skip;
     memset(&counts, 0, sizeof(counts));
     counts.triangles = triangles;
     counts.patches = 1;
     meshfix__plan_geometry(&counts, MESHFIX_POLICY_AUTO, &arena->plan);
-    arena->base = (unsigned char *)malloc(arena->plan.total);
+    raw = (unsigned char *)malloc(arena->plan.total + MESHFIX__ARENA_ALIGN + sizeof(void *));
+    arena->base = NULL;
+    if (raw == NULL)
+        return;
+    skip = sizeof(void *) + (MESHFIX__ARENA_ALIGN - (size_t)(raw + sizeof(void *)) % MESHFIX__ARENA_ALIGN) %
+                                MESHFIX__ARENA_ALIGN;
+    arena->base = raw + skip;
+    memcpy(arena->base - sizeof(void *), &raw, sizeof(void *)); /* where the block starts, for free_arena */
+}
+
+/* Frees an arena of make_arena (NULL base: nothing). */
+static void free_arena(meshfix__arena *arena)
+{
+    unsigned char *raw;
+    if (arena->base == NULL)
+        return;
+    memcpy(&raw, arena->base - sizeof(void *), sizeof(void *));
+    free(raw);
+    arena->base = NULL;
 }
 
 /* The slots of every triangle with an area, as one unit, in an arena of
-   its own (free bvh_arena->base after); `units` holds a word per
+   its own (free_arena(bvh_arena) after); `units` holds a word per
    triangle. Returns 0 when out of memory. */
 static int whole_unit(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena, unsigned int *units)
 {
@@ -64,7 +86,7 @@ static unsigned int whole_tree_built(meshfix__bvh *bvh, const meshfix__mesh *m, 
         return MESHFIX__NONE;
     if (!sah_only)
         return meshfix__unit_tree(bvh, m, 0);
-    return bvh->unit_root[0] = meshfix__sah_tree(bvh, m, bvh->unit_first[0], bvh->unit_first[1]);
+    return meshfix__build_unit_by(bvh, m, 0, NULL, MESHFIX__BUILD_SAH);
 }
 
 static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena,

@@ -496,8 +496,8 @@ static size_t tree_depth(const meshfix__bvh *b, unsigned int node)
 {
     size_t deepest = 0, d;
     int c;
-    for (c = 0; c < MESHFIX__WIDTH; ++c)
-        if (b->nodes[node].count[c] == 0 && (d = tree_depth(b, b->nodes[node].child[c])) > deepest)
+    for (c = 0; c < MESHFIX__WIDE; ++c)
+        if ((b->nodes[node].inner & (1u << c)) && (d = tree_depth(b, b->nodes[node].child[c])) > deepest)
             deepest = d;
     return 1 + deepest;
 }
@@ -561,7 +561,7 @@ static void test_deep_tree(void)
             q.skip = MESHFIX__NONE;
             meshfix__trace(&bvh, root, &ray, &q);
         }
-    free(arena.base);
+    free_arena(&arena);
     for (p = 0; p < POLICIES; ++p) {
         o = policy_options(p);
         CHECK_EQ(meshfix_orient(g.indices, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL),

@@ -860,7 +860,7 @@ static void test_watertight_rays(void)
     }
     printf("    %lu rays through vertices and edges: %lu wrong\n", (unsigned long)rays, (unsigned long)bad);
     CHECK_EQ(bad, 0);
-    free(arena.base);
+    free_arena(&arena);
     free(units);
     free(block);
     mio_free(&g);
@@ -876,18 +876,18 @@ typedef struct tree_facts {
 
 static void walk_tree(const meshfix__bvh *b, unsigned int node, size_t depth, tree_facts *f)
 {
-    const meshfix__node *n = &b->nodes[node];
+    const meshfix__wide *n = &b->nodes[node];
     int c, k;
     f->nodes++;
     f->deepest = depth > f->deepest ? depth : f->deepest;
-    for (c = 0; c < MESHFIX__WIDTH; ++c) {
+    for (c = 0; c < MESHFIX__WIDE; ++c) {
         unsigned int i;
-        if (n->count[c] == MESHFIX__EMPTY)
-            continue;
-        if (n->count[c] == 0) {
+        if (n->inner & (1u << c)) {
             walk_tree(b, n->child[c], depth + 1, f);
             continue;
         }
+        if (!(n->leaves & (1u << c)))
+            continue;
         for (i = n->child[c]; i < n->child[c] + n->count[c]; ++i) {
             f->seen[i]++;
             for (k = 0; k < 9; ++k)
@@ -933,11 +933,12 @@ static void check_tree(const char *builder, const meshfix__bvh *bvh, unsigned in
         for (slot = 0; slot < bvh->count; ++slot) {
             /* the leaves' own test, one slot at a time: the same float
                operations even where -ffast-math reorders the scalar test */
-            float hit_t[4];
-            int zeros[4];
-            if (meshfix__hit_slots(&ray, bvh->corners + 9 * slot, 1, hit_t, zeros)) {
-                t_brute = hit_t[0] < t_brute ? hit_t[0] : t_brute;
-                meshfix__count_crossing(&crossings, hit_t[0], zeros[0]);
+            float hit_t[MESHFIX__WIDE];
+            int zeros[MESHFIX__WIDE];
+            unsigned int lane = (unsigned int)(slot % MESHFIX__WIDE);
+            if (meshfix__lanes_simd(&ray, &bvh->blocks[slot / MESHFIX__WIDE], 1u << lane, hit_t, zeros)) {
+                t_brute = hit_t[lane] < t_brute ? hit_t[lane] : t_brute;
+                meshfix__count_crossing(&crossings, hit_t[lane], zeros[lane]);
             }
         }
         hits_brute = (crossings.halves + 1) / 2;
@@ -1017,9 +1018,9 @@ static void test_trees_against_brute_force(void)
         check_tree(model == 0 ? "the library's (binned SAH)" : "the library's (Morton clusters)", &bvh,
                    whole_tree(&bvh, &m, &arena, units), 7 + (unsigned long long)model);
         CHECK((model == 0) == (bvh.count < MESHFIX__MORTON_MIN));
-        free(arena.base);
+        free_arena(&arena);
         check_tree("binned SAH", &bvh, whole_tree_built(&bvh, &m, &arena, units, 1), 7 + (unsigned long long)model);
-        free(arena.base);
+        free_arena(&arena);
         free(units);
         free(block);
         mio_free(&g);

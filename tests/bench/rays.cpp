@@ -29,6 +29,9 @@
 // hits at one distance on vertex-sharing triangles of head.stl that the
 // merge above takes as one crossing and meshfix counts as two.
 //
+// Each mesh also gets a table of the trees' build time and bytes per
+// triangle (tree_bytes; Embree's through rtcSetDeviceMemoryMonitorFunction).
+//
 // Build without Embree: leave MESHFIX_BENCH_EMBREE undefined (the Makefile
 // defines it when /usr/include/embree3/rtcore.h exists); meshfix's own
 // numbers are then printed alone.
@@ -158,7 +161,7 @@ struct MeshfixTree {
     }
     void release()
     {
-        std::free(arena.base);
+        free_arena(&arena);
         std::memset(&arena, 0, sizeof(arena));
         root = MESHFIX__NONE;
     }
@@ -168,6 +171,34 @@ struct MeshfixTree {
         std::free(block);
     }
 };
+
+// The bytes of meshfix's tree a ray reads: the nodes reachable from the
+// root (256 bytes each) and the leaf blocks of its slots; and the bytes the
+// library's scratch reserves for the trees (nodes and blocks at their
+// bound, the slots' triangles, corners and Morton sort keys).
+struct TreeBytes {
+    size_t nodes = 0, used = 0, reserved = 0;
+};
+
+static TreeBytes tree_bytes(const MeshfixTree &tree)
+{
+    TreeBytes r;
+    std::vector<unsigned int> stack(1, tree.root);
+    while (!stack.empty()) {
+        const meshfix__wide &n = tree.bvh.nodes[stack.back()];
+        stack.pop_back();
+        r.nodes++;
+        for (int c = 0; c < MESHFIX__WIDE; ++c)
+            if (n.inner & (1u << c))
+                stack.push_back(n.child[c]);
+    }
+    const meshfix__geometry_plan &p = tree.arena.plan;
+    r.used = r.nodes * sizeof(meshfix__wide) + (tree.bvh.count + MESHFIX__WIDE - 1) / MESHFIX__WIDE * sizeof(meshfix__leaf_block);
+    r.reserved = p.nodes.count * sizeof(meshfix__wide) + p.blocks.count * sizeof(meshfix__leaf_block) +
+                 p.order.count * sizeof(unsigned int) + p.corners.count * sizeof(float) +
+                 p.morton_sort.count * sizeof(unsigned int);
+    return r;
+}
 
 static unsigned long long meshfix_trace_all(const MeshfixTree &tree, const RaySet &rays, int mode, Answers *answers)
 {
@@ -250,8 +281,17 @@ static void count_filter(const RTCFilterFunctionNArguments *args)
     }
 }
 
+// Embree's bytes in use, through the device's memory monitor.
+static bool count_memory(void *user, ssize_t bytes, bool)
+{
+    *static_cast<long long *>(user) += bytes;
+    return true;
+}
+
 struct EmbreeScene {
     RTCDevice device = nullptr;
+    long long bytes = 0;       // in use by the device now (count_memory)
+    long long scene_bytes = 0; // of the last scene built: its buffers (a copy of the mesh) and its tree
     RTCScene scene = nullptr;
     std::vector<float> vertices;       // frame space, 4 floats each (Embree reads 16 bytes)
     std::vector<unsigned int> indices; // triangles with an area
@@ -260,6 +300,7 @@ struct EmbreeScene {
     void build(RTCBuildQuality quality, bool with_filter)
     {
         release();
+        long long before = bytes;
         scene = rtcNewScene(device);
         rtcSetSceneBuildQuality(scene, quality);
         RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -280,6 +321,7 @@ struct EmbreeScene {
         rtcAttachGeometry(scene, geometry);
         rtcReleaseGeometry(geometry);
         rtcCommitScene(scene);
+        scene_bytes = bytes - before;
     }
     void release()
     {
@@ -427,6 +469,7 @@ static int bench_mesh(const char *name, const mio_mesh &g, const Settings &s, in
         std::printf("(Embree: rtcNewDevice failed, error %d)\n", int(rtcGetDeviceError(nullptr)));
         return 1;
     }
+    rtcSetDeviceMemoryMonitorFunction(e.device, count_memory, &e.bytes);
     // the very triangles meshfix traces: its frame's vertices, its slots
     e.vertices.resize(4 * g.vertex_count);
     for (size_t v = 0; v < g.vertex_count; ++v) {
@@ -442,7 +485,9 @@ static int bench_mesh(const char *name, const mio_mesh &g, const Settings &s, in
     auto wall_before = std::chrono::steady_clock::now();
     Timing medium = time_runs(runs, [&] { e.build(RTC_BUILD_QUALITY_MEDIUM, false); });
     double cpu_per_wall = (cpu_seconds() - cpu_before) / std::max(1e-9, seconds_since(wall_before));
+    long long medium_bytes = e.scene_bytes;
     Timing high = time_runs(runs, [&] { e.build(RTC_BUILD_QUALITY_HIGH, false); });
+    long long high_bytes = e.scene_bytes;
     e.build(RTC_BUILD_QUALITY_MEDIUM, false);
     std::printf("\n%s: %zu triangles. Build ms (min / median of %d): meshfix whole_tree %s | Embree MEDIUM %s "
                 "(cpu/wall %.2f) | Embree HIGH %s | meshfix / Embree MEDIUM %s\n\n",
@@ -479,6 +524,27 @@ static int bench_mesh(const char *name, const mio_mesh &g, const Settings &s, in
                       "rays, %s: the library's tree builds in %s the time of binned SAH and traces incoherent "
                       "closest hits at %s its rate",
                       name, ratio(build.min, sah_build.min).c_str(), ratio(sah_rays.min, lib_rays.min).c_str());
+        summary->push_back(text);
+        // build time and memory per triangle of each tree
+        TreeBytes lib = tree_bytes(tree), binned = tree_bytes(sah);
+        double per = 1e9 / double(triangles);
+        std::printf("| tree | build ms | build ns / triangle | nodes | bytes / triangle (what rays read) | "
+                    "bytes / triangle (reserved) |\n|---|---:|---:|---:|---:|---:|\n");
+        std::printf("| meshfix (%s) | %s | %.0f | %zu | %.1f | %.1f |\n",
+                    triangles >= MESHFIX__MORTON_MIN ? "Morton clusters" : "binned SAH", min_med(build, 1e3).c_str(),
+                    build.min * per, lib.nodes, double(lib.used) / triangles, double(lib.reserved) / triangles);
+        std::printf("| meshfix binned SAH | %s | %.0f | %zu | %.1f | %.1f |\n", min_med(sah_build, 1e3).c_str(),
+                    sah_build.min * per, binned.nodes, double(binned.used) / triangles,
+                    double(binned.reserved) / triangles);
+#ifdef MESHFIX_BENCH_EMBREE
+        std::printf("| Embree MEDIUM | %s | %.0f | - | %.1f (with its copy of the mesh) | - |\n",
+                    min_med(medium, 1e3).c_str(), medium.min * per, double(medium_bytes) / triangles);
+        std::printf("| Embree HIGH | %s | %.0f | - | %.1f (with its copy of the mesh) | - |\n",
+                    min_med(high, 1e3).c_str(), high.min * per, double(high_bytes) / triangles);
+#endif
+        std::printf("\n");
+        std::snprintf(text, sizeof(text), "rays, %s: meshfix's tree %.0f ns and %.0f bytes per triangle (%.0f reserved)",
+                      name, build.min * per, double(lib.used) / triangles, double(lib.reserved) / triangles);
         summary->push_back(text);
     }
     std::printf("| rays | query | meshfix Mrays/s | Embree 1-ray Mrays/s | Embree / meshfix | Embree 8-packets Mrays/s | "
@@ -577,7 +643,10 @@ int part_rays(const Settings &s, std::vector<std::string> *summary)
                 "rtcOccluded1, closest hit = rtcIntersect1, all crossings = rtcIntersect1 with a filter that counts\n"
                 "and rejects every hit (hits at one distance on triangles sharing a vertex merged); 8-packets =\n"
                 "rtcOccluded8 / rtcIntersect8 on consecutive rays. Disagree: share of rays where the two differ (hit\n"
-                "or miss; closest distance beyond 1e-4 relative; crossing count and its parity).\n",
+                "or miss; closest distance beyond 1e-4 relative; crossing count and its parity). Per mesh, the\n"
+                "trees' build time and bytes per triangle: meshfix's nodes reachable from the root and its leaf\n"
+                "blocks (what rays read), and the room its scratch reserves for the trees; Embree's bytes as its\n"
+                "device's memory monitor counts them for the scene (its copy of the mesh included).\n",
                 s.quick ? "250k" : "1M", runs);
     int status = 0;
     Agreement agreement;
