@@ -427,6 +427,8 @@ typedef struct meshfix_evidence_counts {
     size_t pairs_conflicting;     /* VISIBILITY: pairs left wound against their coherence */
     size_t sdf_evaluations;       /* SDF: calls of distance and gradient */
     size_t triangles_sdf_disagree; /* SDF: triangles whose own vote disagrees with their patch's */
+    size_t triangles_against_normals; /* flipped although their clear normal (options.evidence) agreed with
+                                         their winding as given */
 } meshfix_evidence_counts;
 
 /* Out only: a call writes all of it, or (on error) none of it. */
@@ -658,6 +660,7 @@ MESHFIX_API meshfix_policy meshfix_policy_from_string(const char *name);
 #define MESHFIX__TRI_SEAM      2048u /* closes a cycle of contradicting edges */
 #define MESHFIX__TRI_NON_FINITE 4096u /* a corner is NaN or infinite: no geometry */
 #define MESHFIX__TRI_NO_AREA   8192u /* finite, distinct corners on one line (in double) */
+#define MESHFIX__TRI_CUT      16384u /* an inconsistent edge its normals keep: the patch ends there */
 /* patch bits */
 #define MESHFIX__PATCH_OPEN           1u /* a boundary edge or an odd share of a ring */
 #define MESHFIX__PATCH_NOT_MANIFOLD   2u /* has a boundary or non-manifold edge */
@@ -1689,6 +1692,88 @@ MESHFIX__PRIVATE size_t meshfix__count_non_manifold_vertices(meshfix__mesh *m)
     return count;
 }
 
+/* ===== >>normals ===== */
+
+/* A triangle's geometric normal, and the caller's normals as evidence
+   (options.evidence): the flood fill asks them where an edge disagrees,
+   the decision where a patch or a unit faces. */
+
+/* Corners of t relative to origin, and its normal (b - a) x (c - a), twice
+   its area long. The normal comes from the positions as given, in the
+   operations of meshfix__spans_area: about a far origin the corners of a
+   small triangle round together, and the report would count as without
+   an area a triangle that meshfix_check does not find. */
+MESHFIX__PRIVATE void meshfix__load_triangle(const meshfix__mesh *m, unsigned int t, const double origin[3],
+                                            double a[3], double b[3], double c[3], double n[3])
+{
+    const float *p = meshfix__position(m, m->indices[3 * t]), *q = meshfix__position(m, m->indices[3 * t + 1]);
+    const float *r = meshfix__position(m, m->indices[3 * t + 2]);
+    double u[3], v[3];
+    int k;
+    for (k = 0; k < 3; ++k) {
+        a[k] = (double)p[k] - origin[k];
+        b[k] = (double)q[k] - origin[k];
+        c[k] = (double)r[k] - origin[k];
+        u[k] = (double)q[k] - (double)p[k];
+        v[k] = (double)r[k] - (double)p[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+/* The caller's normal of triangle t: its own (triangle normals), or the
+   sum of its corners' (vertex normals); 0 when it is not usable (none
+   given, zero or not finite). */
+MESHFIX__PRIVATE int meshfix__authored_normal(const meshfix__mesh *m, unsigned int t, double out[3])
+{
+    const meshfix_options *o = m->options;
+    unsigned int c;
+    int k;
+    out[0] = out[1] = out[2] = 0.0;
+    if (o->evidence.triangle_normals != NULL) {
+        size_t stride = o->evidence.triangle_normals_stride != 0 ? o->evidence.triangle_normals_stride : 3 * sizeof(float);
+        const float *n = (const float *)(const void *)((const char *)o->evidence.triangle_normals + (size_t)t * stride);
+        if (!meshfix__is_finite_point(n))
+            return 0;
+        for (k = 0; k < 3; ++k)
+            out[k] = (double)n[k];
+    } else if (o->evidence.vertex_normals != NULL) {
+        size_t stride = o->evidence.vertex_normals_stride != 0 ? o->evidence.vertex_normals_stride : 3 * sizeof(float);
+        for (c = 0; c < 3; ++c) {
+            /* by the caller's index: its normal, not the joined vertex's */
+            size_t v = meshfix__source_index(m->input, 3 * (size_t)t + c);
+            const float *n = (const float *)(const void *)((const char *)o->evidence.vertex_normals + v * stride);
+            if (!meshfix__is_finite_point(n))
+                return 0;
+            for (k = 0; k < 3; ++k)
+                out[k] += (double)n[k];
+        }
+    } else {
+        return 0;
+    }
+    return out[0] != 0 || out[1] != 0 || out[2] != 0;
+}
+
+MESHFIX__PRIVATE int meshfix__normal_usable(const meshfix__mesh *m, unsigned int t)
+{
+    double n[3];
+    return meshfix__authored_normal(m, t, n);
+}
+
+/* +1 when the caller's normal of t points the way n (t's normal as
+   given) does, -1 against it, 0 when it is missing or too oblique (less
+   than 0.3 of its length along n) to say. */
+MESHFIX__PRIVATE double meshfix__normal_vote(const meshfix__mesh *m, unsigned int t, const double n[3])
+{
+    double a[3], dot, lengths;
+    if (!meshfix__authored_normal(m, t, a))
+        return 0.0;
+    dot = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+    lengths = MESHFIX_SQRT((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+    return dot > 0.3 * lengths ? 1.0 : dot < -0.3 * lengths ? -1.0 : 0.0;
+}
+
 /* ===== >>patches ===== */
 
 /* Patches are the classes of a union-find over triangles joined by
@@ -1733,6 +1818,28 @@ MESHFIX__PRIVATE void meshfix__join_triangles(meshfix__mesh *m, unsigned int t, 
     m->tri_bits[high] = (unsigned short)(m->tri_bits[high] | (bt ^ bu ^ opposite));
 }
 
+/* Whether the caller's normals keep two triangles that run their shared
+   edge the same way apart: each has a clear normal (meshfix__normal_vote)
+   that agrees with its own winding as given (a fold, a double-sided part,
+   two sheets facing apart). The flood fill would turn one of them against
+   its author's normal; the edge ends both patches instead. */
+MESHFIX__PRIVATE int meshfix__normal_agrees(const meshfix__mesh *m, unsigned int t)
+{
+    double a[3], b[3], c[3], n[3], origin[3] = {0, 0, 0};
+    if (m->positions == NULL || !meshfix__has_geometry(m, t))
+        return 0;
+    meshfix__load_triangle(m, t, origin, a, b, c, n);
+    return meshfix__normal_vote(m, t, n) > 0;
+}
+
+MESHFIX__PRIVATE int meshfix__normals_keep_apart(const meshfix__mesh *m, unsigned int t, unsigned int u)
+{
+    const meshfix_options *o = m->options;
+    if (o->evidence.triangle_normals == NULL && o->evidence.vertex_normals == NULL)
+        return 0;
+    return meshfix__normal_agrees(m, t) && meshfix__normal_agrees(m, u);
+}
+
 /* Joins t to its lower manifold neighbours, in order of neighbour; marks
    t when it has other kinds of edges. */
 MESHFIX__PRIVATE void meshfix__join_lower_neighbours(meshfix__mesh *m, unsigned int t)
@@ -1754,8 +1861,14 @@ MESHFIX__PRIVATE void meshfix__join_lower_neighbours(meshfix__mesh *m, unsigned 
         /* two triangles that run an edge the same way disagree */
         opposite[j] = (unsigned int)meshfix__same_direction(m, h, g);
     }
-    for (i = 0; i < n; ++i)
+    for (i = 0; i < n; ++i) {
+        if (opposite[i] && meshfix__normals_keep_apart(m, t, u[i])) {
+            m->tri_bits[t] |= MESHFIX__TRI_CUT;
+            m->tri_bits[u[i]] |= MESHFIX__TRI_CUT;
+            continue;
+        }
         meshfix__join_triangles(m, t, u[i], opposite[i]);
+    }
 }
 
 /* Numbers the patches by their seeds, gives each triangle its patch and
@@ -1782,7 +1895,7 @@ MESHFIX__PRIVATE void meshfix__number_patches(meshfix__mesh *m)
         m->patch_start[p]++;
         if (bits & (MESHFIX__TRI_OPEN | MESHFIX__TRI_NOT_MANIFOLD))
             m->patch_bits[p] |= MESHFIX__PATCH_NOT_MANIFOLD;
-        if (bits & MESHFIX__TRI_OPEN)
+        if (bits & (MESHFIX__TRI_OPEN | MESHFIX__TRI_CUT))
             m->patch_bits[p] |= MESHFIX__PATCH_OPEN;
         if (bits & MESHFIX__TRI_SEAM)
             m->patch_bits[p] |= MESHFIX__PATCH_NON_ORIENTABLE;
@@ -2007,82 +2120,6 @@ MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned
 }
 
 /* ===== >>orient ===== */
-
-/* Corners of t relative to origin, and its normal (b - a) x (c - a), twice
-   its area long. The normal comes from the positions as given, in the
-   operations of meshfix__spans_area: about a far origin the corners of a
-   small triangle round together, and the report would count as without
-   an area a triangle that meshfix_check does not find. */
-MESHFIX__PRIVATE void meshfix__load_triangle(const meshfix__mesh *m, unsigned int t, const double origin[3],
-                                            double a[3], double b[3], double c[3], double n[3])
-{
-    const float *p = meshfix__position(m, m->indices[3 * t]), *q = meshfix__position(m, m->indices[3 * t + 1]);
-    const float *r = meshfix__position(m, m->indices[3 * t + 2]);
-    double u[3], v[3];
-    int k;
-    for (k = 0; k < 3; ++k) {
-        a[k] = (double)p[k] - origin[k];
-        b[k] = (double)q[k] - origin[k];
-        c[k] = (double)r[k] - origin[k];
-        u[k] = (double)q[k] - (double)p[k];
-        v[k] = (double)r[k] - (double)p[k];
-    }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
-}
-
-/* The caller's normal of triangle t: its own (triangle normals), or the
-   sum of its corners' (vertex normals); 0 when it is not usable (none
-   given, zero or not finite). */
-MESHFIX__PRIVATE int meshfix__authored_normal(const meshfix__mesh *m, unsigned int t, double out[3])
-{
-    const meshfix_options *o = m->options;
-    unsigned int c;
-    int k;
-    out[0] = out[1] = out[2] = 0.0;
-    if (o->evidence.triangle_normals != NULL) {
-        size_t stride = o->evidence.triangle_normals_stride != 0 ? o->evidence.triangle_normals_stride : 3 * sizeof(float);
-        const float *n = (const float *)(const void *)((const char *)o->evidence.triangle_normals + (size_t)t * stride);
-        if (!meshfix__is_finite_point(n))
-            return 0;
-        for (k = 0; k < 3; ++k)
-            out[k] = (double)n[k];
-    } else if (o->evidence.vertex_normals != NULL) {
-        size_t stride = o->evidence.vertex_normals_stride != 0 ? o->evidence.vertex_normals_stride : 3 * sizeof(float);
-        for (c = 0; c < 3; ++c) {
-            /* by the caller's index: its normal, not the joined vertex's */
-            size_t v = meshfix__source_index(m->input, 3 * (size_t)t + c);
-            const float *n = (const float *)(const void *)((const char *)o->evidence.vertex_normals + v * stride);
-            if (!meshfix__is_finite_point(n))
-                return 0;
-            for (k = 0; k < 3; ++k)
-                out[k] += (double)n[k];
-        }
-    } else {
-        return 0;
-    }
-    return out[0] != 0 || out[1] != 0 || out[2] != 0;
-}
-
-MESHFIX__PRIVATE int meshfix__normal_usable(const meshfix__mesh *m, unsigned int t)
-{
-    double n[3];
-    return meshfix__authored_normal(m, t, n);
-}
-
-/* +1 when the caller's normal of t points the way n (t's normal as
-   given) does, -1 against it, 0 when it is missing or too oblique (less
-   than 0.3 of its length along n) to say. */
-MESHFIX__PRIVATE double meshfix__normal_vote(const meshfix__mesh *m, unsigned int t, const double n[3])
-{
-    double a[3], dot, lengths;
-    if (!meshfix__authored_normal(m, t, a))
-        return 0.0;
-    dot = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
-    lengths = MESHFIX_SQRT((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
-    return dot > 0.3 * lengths ? 1.0 : dot < -0.3 * lengths ? -1.0 : 0.0;
-}
 
 MESHFIX__PRIVATE double meshfix__edge_length(const meshfix__mesh *m, unsigned int h)
 {
@@ -6480,6 +6517,8 @@ MESHFIX__PRIVATE size_t meshfix__turn_patch(meshfix__mesh *m, unsigned int p, in
             flip = meshfix__sdf_flip(m, t, flip, r);
         m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | (flip ? MESHFIX__TRI_FLIP : 0u));
         flipped += flip;
+        if (flip && (m->options->evidence.triangle_normals != NULL || m->options->evidence.vertex_normals != NULL))
+            r->evidence.triangles_against_normals += (size_t)meshfix__normal_agrees(m, t);
     }
     return flipped;
 }
@@ -7131,7 +7170,9 @@ MESHFIX__PRIVATE void meshfix__debug_check_orientation(const meshfix__mesh *m)
     unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
     for (h = 0; h < half_edges; ++h) {
         unsigned int g = m->mate[h];
-        if (meshfix__is_mate(g) && !(m->patch_bits[m->tri_patch[h / 3]] & MESHFIX__PATCH_NON_ORIENTABLE))
+        /* an edge the caller's normals kept apart stays as it is */
+        if (meshfix__is_mate(g) && !(m->patch_bits[m->tri_patch[h / 3]] & MESHFIX__PATCH_NON_ORIENTABLE) &&
+            !(m->tri_bits[h / 3] & m->tri_bits[g / 3] & MESHFIX__TRI_CUT))
             MESHFIX_ASSERT(((unsigned int)meshfix__same_direction(m, h, g) ^ meshfix__flip_of(m, h / 3) ^
                             meshfix__flip_of(m, g / 3)) == 0);
     }

@@ -110,6 +110,8 @@ export interface EvidenceCounts {
     pairsConflicting: number;
     sdfEvaluations: number;
     trianglesSdfDisagree: number;
+    /** flipped although their clear normal agreed with their winding as given */
+    trianglesAgainstNormals: number;
 }
 
 /** meshfix_report. */

@@ -355,6 +355,82 @@ static void test_authored_normals(void)
     mio_free(&g);
 }
 
+/* A sheet of 20 x 20 quads whose left half is wound the other way, each
+   triangle's normal agreeing with its own winding (two sheets facing
+   apart, a fold, a double-sided part): the flood fill must not join the
+   halves and turn one against its author. With the normals of one
+   consistent sheet instead (the left half reversed by an export), the
+   halves are joined and the left one restored. The report counts the
+   triangles flipped against a clear normal that agreed with them. */
+static void test_normals_keep_folds(void)
+{
+    mio_mesh g;
+    meshfix_options o;
+    meshfix_report r;
+    float *normals;
+    unsigned int *out, *as_built;
+    size_t t, n, v, left = 0;
+    float lo = 1e30f, hi = -1e30f;
+    CHECK(gen_grid(&g, 20, 20));
+    n = g.index_count / 3;
+    for (v = 0; v < g.vertex_count; ++v) {
+        lo = g.positions[3 * v] < lo ? g.positions[3 * v] : lo;
+        hi = g.positions[3 * v] > hi ? g.positions[3 * v] : hi;
+    }
+    as_built = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
+    memcpy(as_built, g.indices, g.index_count * sizeof(unsigned int));
+    for (t = 0; t < n; ++t) {
+        const unsigned int *c = g.indices + 3 * t;
+        float x = (g.positions[3 * c[0]] + g.positions[3 * c[1]] + g.positions[3 * c[2]]) / 3;
+        if (x < 0.5f * (lo + hi)) {
+            unsigned int k = g.indices[3 * t + 1];
+            g.indices[3 * t + 1] = g.indices[3 * t + 2];
+            g.indices[3 * t + 2] = k;
+            left++;
+        }
+    }
+    CHECK(left > 0 && left < n);
+    normals = face_normals(&g); /* each agrees with its triangle as it stands */
+    memset(&o, 0, sizeof(o));
+    o.evidence.triangle_normals = normals;
+    out = repair(&g, &o, &r);
+    CHECK_EQ(r.triangles_flipped, 0);
+    CHECK_EQ(r.evidence.triangles_against_normals, 0);
+    CHECK_EQ(r.mesh.patches, 2); /* the inconsistent edges end both halves */
+    free(out);
+    o.policy = MESHFIX_POLICY_MAJORITY; /* a policy that reads no normals: the same patches */
+    out = repair(&g, &o, &r);
+    CHECK_EQ(r.triangles_flipped, 0);
+    free(out);
+    o.policy = MESHFIX_POLICY_AUTO;
+    free(normals);
+    {
+        mio_mesh up = g;
+        up.indices = as_built;
+        normals = face_normals(&up); /* the consistent sheet's: the left half now disagrees */
+    }
+    o.evidence.triangle_normals = normals;
+    out = repair(&g, &o, &r);
+    CHECK(memcmp(out, as_built, g.index_count * sizeof(unsigned int)) == 0);
+    CHECK_EQ(r.triangles_flipped, left);
+    CHECK_EQ(r.evidence.triangles_against_normals, 0);
+    free(out);
+    /* policy UP with -z turns every triangle of the sheet as built against its normal */
+    {
+        mio_mesh up = g;
+        up.indices = as_built;
+        o.policy = MESHFIX_POLICY_UP;
+        o.up[0] = 0, o.up[1] = 0, o.up[2] = -1;
+        out = repair(&up, &o, &r);
+        CHECK_EQ(r.triangles_flipped, n);
+        CHECK_EQ(r.evidence.triangles_against_normals, n);
+        free(out);
+    }
+    free(normals);
+    free(as_built);
+    mio_free(&g);
+}
+
 /* Three rooms wound and lit from inside, beside a floor sheet facing up:
    every closed part disagrees with the geometry, which alone would call
    the scene reversed and turn the floor down too. The normals agree with
@@ -620,6 +696,8 @@ static const test_case tests[] = {
      test_cut_families},
     {"same verdicts for any triangle order and any amount reversed", test_order_and_amount},
     {"authored normals: an inward drum kept, half reversed restored to them", test_authored_normals},
+    {"authored normals on both sides of an inconsistent edge keep it apart; a reversed half is restored",
+     test_normals_keep_folds},
     {"rooms facing in with their normals beside a floor: unchanged; a third reversed: restored", test_rooms_with_normals},
     {"min_confidence leaves doubtful patches as their majority faces", test_min_confidence},
     {"a table top over a floor cut into 16 reversed patches: sampled until its rays are significant",

@@ -147,6 +147,7 @@ static const mfjs_line mfjs_lines[] = {
     MFJS_FIELD(meshfix_report, evidence.pairs_conflicting)
     MFJS_FIELD(meshfix_report, evidence.sdf_evaluations)
     MFJS_FIELD(meshfix_report, evidence.triangles_sdf_disagree)
+    MFJS_FIELD(meshfix_report, evidence.triangles_against_normals)
     MFJS_STRUCT(meshfix_check_failure)
     MFJS_FIELD(meshfix_check_failure, result)
     MFJS_FIELD(meshfix_check_failure, requirement)

@@ -54,11 +54,16 @@ await test('OBJ: an index out of range is refused with its text', () => {
     }
 });
 
-await test('STL ASCII: a cube with one facet turned is repaired, the facet\'s corners and normal turned back', async () => {
-    const facet = (f, turn) => {
+// A facet whose corners were turned with its normal as exported is
+// repaired (corners turned back, the normal kept); one whose normal was
+// computed again from its turned corners agrees with them, and the
+// library keeps what the file's normals and winding both say.
+await test('STL ASCII: a cube with one facet\'s corners turned is repaired; turned with its normal, it is kept', async () => {
+    const facet = (f, turn, normalToo = false) => {
         const [a, b, c] = turn ? [f[0], f[2], f[1]] : f;
         const p = CUBE_V;
-        const u = [0, 1, 2].map((k) => p[b][k] - p[a][k]), w = [0, 1, 2].map((k) => p[c][k] - p[a][k]);
+        const [na, nb, nc] = normalToo ? [a, b, c] : f;
+        const u = [0, 1, 2].map((k) => p[nb][k] - p[na][k]), w = [0, 1, 2].map((k) => p[nc][k] - p[na][k]);
         const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
         return ` facet normal ${n.join(' ')}\n  outer loop\n` + [a, b, c].map((v) => `   vertex ${p[v].join(' ')}\n`).join('') +
             '  endloop\n endfacet\n';
@@ -71,6 +76,9 @@ await test('STL ASCII: a cube with one facet turned is repaired, the facet\'s co
     expect(problems, 'vertices (welded)', r.parts[0].positions.length / 3, 8);
     if (!same(r.output, bytes(good)))
         problems.push(`written:\n${new TextDecoder().decode(r.output).split('\n').slice(28, 36).join('\n')}`);
+    const both = `solid cube\n${CUBE_F.map((f, i) => facet(f, i === 4, true)).join('')}endsolid cube\n`;
+    const kept = await repairMeshFile('cube.stl', bytes(both));
+    expect(problems, 'flips (turned with its normal)', kept.flips, 0);
     return problems;
 });
 

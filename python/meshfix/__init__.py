@@ -147,7 +147,7 @@ class _EvidenceCounts(Structure):
     _fields_ = [(name, c_size_t) for name in (
         "patches_by_volume", "patches_by_parity", "patches_by_visibility", "patches_by_normals", "patches_kept",
         "shells_inward", "rays_cast", "patch_pairs", "patches_merged", "pairs_conflicting", "sdf_evaluations",
-        "triangles_sdf_disagree")]
+        "triangles_sdf_disagree", "triangles_against_normals")]
 
 
 class _Report(Structure):

@@ -123,6 +123,7 @@ static const meshfix_python_line meshfix_python_lines[] = {
     MESHFIX_PY_FIELD(meshfix_evidence_counts, pairs_conflicting)
     MESHFIX_PY_FIELD(meshfix_evidence_counts, sdf_evaluations)
     MESHFIX_PY_FIELD(meshfix_evidence_counts, triangles_sdf_disagree)
+    MESHFIX_PY_FIELD(meshfix_evidence_counts, triangles_against_normals)
     MESHFIX_PY_STRUCT(meshfix_report)
     MESHFIX_PY_FIELD(meshfix_report, verdict)
     MESHFIX_PY_FIELD(meshfix_report, triangles_flipped)

@@ -70,6 +70,7 @@ static void print_report(const meshfix_report *r)
     SIZE("evidence.", e, patches_kept) SIZE("evidence.", e, shells_inward) SIZE("evidence.", e, rays_cast)
     SIZE("evidence.", e, patch_pairs) SIZE("evidence.", e, patches_merged) SIZE("evidence.", e, pairs_conflicting)
     SIZE("evidence.", e, sdf_evaluations) SIZE("evidence.", e, triangles_sdf_disagree)
+    SIZE("evidence.", e, triangles_against_normals)
 }
 
 int main(int argc, char **argv)

@@ -100,10 +100,10 @@ std::string evidence_json(const meshfix_evidence_counts &e)
 {
     return format("{\"patches_by_volume\":%lu,\"patches_by_parity\":%lu,\"patches_by_visibility\":%lu,"
                   "\"patches_by_normals\":%lu,\"patches_kept\":%lu,\"shells_inward\":%lu,\"rays_cast\":%lu,"
-                  "\"patch_pairs\":%lu,\"patches_merged\":%lu,\"pairs_conflicting\":%lu}",
+                  "\"patch_pairs\":%lu,\"patches_merged\":%lu,\"pairs_conflicting\":%lu,\"triangles_against_normals\":%lu}",
                   n(e.patches_by_volume), n(e.patches_by_parity), n(e.patches_by_visibility), n(e.patches_by_normals),
                   n(e.patches_kept), n(e.shells_inward), n(e.rays_cast), n(e.patch_pairs), n(e.patches_merged),
-                  n(e.pairs_conflicting));
+                  n(e.pairs_conflicting), n(e.triangles_against_normals));
 }
 
 std::string unit_json(const Unit &u, const UnitResult &r)
