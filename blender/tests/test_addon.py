@@ -323,7 +323,12 @@ def read_mark(path):
     header = data[:end].decode()
     vertices = int(header.split("element vertex ")[1].split()[0])
     faces = int(header.split("element face ")[1].split()[0])
-    rows = np.frombuffer(data, np.dtype([("n", "u1"), ("i", "<u4", 3), ("rgb", "u1", 3)]), faces, end + 12 * vertices)
+    # a vertex is its float x, y, z and, where the header says so, its uchar colour
+    vertex_bytes = sum(4 if kind == "float" else 1 for kind in
+                       (line.split()[1] for line in header.split("element vertex ")[1].split("element face")[0].splitlines()
+                        if line.startswith("property ")))
+    rows = np.frombuffer(data, np.dtype([("n", "u1"), ("i", "<u4", 3), ("rgb", "u1", 3)]), faces,
+                         end + vertex_bytes * vertices)
     assert np.all(rows["n"] == 3)
     return np.all(rows["rgb"] == (255, 176, 0), axis=1)
 
