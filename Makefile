@@ -105,15 +105,16 @@ $(B)/bench: $(BENCH_SOURCES) tests/bench/common.h tests/internals.h $(HEADERS) |
 	    $(OPENMESH) $(BENCH_EMBREE_LIB) -pthread
 
 # the quality programs the bench runs (part 3)
-$(B)/stl_truth: tests/eval/stl_truth.c meshfix.h | $(B)
+$(B)/stl_truth: tests/eval/stl_truth.c tests/eval/calibration.h meshfix.h | $(B)
 	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/stl_truth.c -lm
 
 # scores the tool's repair against the normals of real assets
 # (tests/corpus/fetch_assets.sh): the tool's loaders and repair without main.cpp
 ASSETS_EVAL_SOURCES = tests/eval/assets_eval.cpp $(filter-out tools/meshfix/main.cpp,$(TOOL_SOURCES))
 
-$(B)/assets_eval: $(ASSETS_EVAL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c $(HEADERS) | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $(B)/assets_eval_libs.o tools/meshfix/libs.c
+$(B)/assets_eval: $(ASSETS_EVAL_SOURCES) $(TOOL_HEADERS) tools/meshfix/libs.c tests/eval/calibration.h $(HEADERS) | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -I. -include tests/eval/calibration.h -DCALIBRATION_IMPLEMENTATION \
+	    -c -o $(B)/assets_eval_libs.o tools/meshfix/libs.c
 	$(CXX) -std=c++17 $(CFLAGS) $(WARN) $(TOOL_FLAGS) -Itools/meshfix -o $@ $(ASSETS_EVAL_SOURCES) $(B)/assets_eval_libs.o \
 	    $(TOOL_LIBS) -pthread
 
@@ -156,11 +157,19 @@ test-only: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES
 quick: $(B)/meshfix $(B)/demo_mesh $(SUITES:%=$(B)/%)
 	@bash tests/quick.sh $(WORD)
 
-$(B)/trust_eval: tests/eval/trust_eval.c tests/scenes.h $(HEADERS) | $(B)
+$(B)/trust_eval: tests/eval/trust_eval.c tests/eval/calibration.h tests/scenes.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/trust_eval.c -lm
 
-$(B)/models_eval: tests/eval/models_eval.c $(HEADERS) | $(B)
+$(B)/models_eval: tests/eval/models_eval.c tests/eval/calibration.h $(HEADERS) | $(B)
 	$(CC) -std=c99 -O2 -I. -o $@ tests/eval/models_eval.c -lm
+
+# AUTO's confidence: rows from the tune halves, fitted into meshfix.h's
+# table (tests/eval/fit.sh; `make fit FIT_ARGS=--validate` leaves it alone)
+$(B)/fit: tests/eval/fit.c | $(B)
+	$(CC) -std=c99 -O2 $(WARN) -o $@ tests/eval/fit.c -lm
+
+fit:
+	bash tests/eval/fit.sh $(FIT_ARGS)
 
 bench: $(B)/bench $(B)/stl_truth $(B)/scenes_eval $(B)/trust_eval $(B)/models_eval
 	$(B)/bench --build $(B) $(BENCH_ARGS)
@@ -192,5 +201,5 @@ blender-addon: $(B)/meshfix_blender.zip
 $(B)/meshfix_blender.zip: $(BLENDER_ADDON) | $(B)
 	sh blender/build.sh $@
 
-.PHONY: all demo sdf-demo blender-addon page test test-only quick bench fuzz clean FORCE
+.PHONY: all demo sdf-demo blender-addon page test test-only quick bench fit fuzz clean FORCE
 FORCE:

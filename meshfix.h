@@ -76,7 +76,7 @@
                                       (the same results, bit for bit)
        MESHFIX_TRACE((f,..)) nothing  printf-like trace of the decision stage
        MESHFIX_MEMSET, MESHFIX_MEMCPY, MESHFIX_SQRT, MESHFIX_FLOOR, MESHFIX_FABS,
-       MESHFIX_SIN, MESHFIX_COS       string.h / math.h
+       MESHFIX_SIN, MESHFIX_COS, MESHFIX_EXP, MESHFIX_LOG  string.h / math.h
 
    API
        meshfix_orient        repair winding into a destination buffer (or report only)
@@ -356,7 +356,8 @@ typedef struct meshfix_component {
 typedef struct meshfix_outputs {
     unsigned char *flipped;        /* out: index_count / 3 flags, 1 = flipped (orient) */
     unsigned int *patch_ids;       /* out: index_count / 3 patch ids, 0xFFFFFFFF = degenerate */
-    float *patch_confidence;       /* out: by patch id, the margin of its verdict, 0 .. 1 (orient) */
+    float *patch_confidence;       /* out: by patch id, 0 .. 1: AUTO, the probability that its verdict is right
+                                      (fitted, see README "Confidence"); other policies, the evidence's margin */
     size_t patch_confidence_capacity; /* in: elements of patch_confidence */
     meshfix_component *components; /* out: the first components_capacity components */
     size_t components_capacity;    /* in */
@@ -436,7 +437,7 @@ typedef struct meshfix_report {
     meshfix_verdict verdict;
     size_t triangles_flipped;
     size_t patches_flipped;
-    size_t patches_doubtful;      /* verdict confidence below 0.5 (or min_confidence when higher) */
+    size_t patches_doubtful;      /* confidence below 0.9 under AUTO, else 0.5 (or min_confidence when higher) */
     size_t triangles_doubtful;
     double area_doubtful;         /* of those patches; 0 without positions */
     size_t edges_inconsistent_before;
@@ -571,8 +572,14 @@ MESHFIX_API meshfix_policy meshfix_policy_from_string(const char *name);
 #define MESHFIX_MEMCPY(dst, src, size) memcpy((dst), (src), (size))
 #endif
 #if !defined(MESHFIX_SQRT) || !defined(MESHFIX_FLOOR) || !defined(MESHFIX_SIN) || !defined(MESHFIX_COS) || \
-    !defined(MESHFIX_FABS)
+    !defined(MESHFIX_FABS) || !defined(MESHFIX_EXP) || !defined(MESHFIX_LOG)
 #include <math.h>
+#endif
+#ifndef MESHFIX_EXP
+#define MESHFIX_EXP(x) exp(x)
+#endif
+#ifndef MESHFIX_LOG
+#define MESHFIX_LOG(x) log(x)
 #endif
 #ifndef MESHFIX_SIN
 #define MESHFIX_SIN(x) sin(x)
@@ -4166,7 +4173,8 @@ typedef struct meshfix__unit {
     unsigned char kind;        /* a meshfix_evidence: what gave `mean` */
     double mean, error, weight; /* geometric vote for the frame's side in [-1, 1], its standard error, its weight */
     unsigned int turn;         /* the verdict: 1 turns the unit over, relative to its frame */
-    float confidence;
+    float margin;              /* the weighing's bound on the side decided, 0 .. 1 */
+    float confidence;          /* reported: AUTO's calibrated probability (meshfix__calibrate), else the margin */
     size_t rays;               /* cast for its evidence (report.evidence.rays_cast) */
 } meshfix__unit;
 
@@ -5983,7 +5991,107 @@ MESHFIX__PRIVATE void meshfix__verdict_from_weights(meshfix__unit *u, double sig
     meshfix__weigh(u, sigma, &low, &high, &majority);
     flip = high < 0;
     u->turn = (unsigned int)((majority < 0) != flip);
-    u->confidence = (float)meshfix__mind(1.0, flip ? -high : meshfix__maxd(0.0, low));
+    u->margin = u->confidence = (float)meshfix__mind(1.0, flip ? -high : meshfix__maxd(0.0, low));
+}
+
+/* AUTO's confidence: the probability that a unit's verdict is right. The
+   weighing above decides; its margin is not a probability (a cut piece
+   kept for lack of evidence has the margin of its consistent winding, 1,
+   and is right as often as a coin). A logistic model over what was
+   weighed, relative to the side decided, and over what the other units
+   of the call say about the file gives one: its weights are fitted on the
+   tune halves of the project's corpora (tests/eval/fit.c, `make fit`) and
+   the held-out halves' reliability is in the README. The decision never
+   reads it; min_confidence and the doubtful count do. */
+#define MESHFIX__FEATURES 24
+static const double meshfix__confidence_weights[MESHFIX__FEATURES] = {
+    /* fitted: begin */
+    5.0654, -2.2967, 0.6128, -0.1825, 0.6376, 1.2745, -1.7334, -1.5888,
+    0.0801, 3.5417, 8.8986, -1.0679, 2.3573, 6.8814, 1.5046, 1.1238,
+    -1.5990, 0.5974, 0.8912, -1.7769, -1.2975, 0.4583, -2.5351, -0.6637
+    /* fitted: end */
+};
+
+/* What the call's units say about the file as a whole: as shipped, few
+   are turned or wound both ways; in a corrupted file many are. */
+typedef struct meshfix__scene_context {
+    double area, turned, inconsistent; /* all units' area; of it, turned against its majority; wound both ways */
+} meshfix__scene_context;
+
+MESHFIX__PRIVATE int meshfix__unit_turned(const meshfix__unit *u)
+{
+    return (u->kept < u->reversed) != (u->turn != 0);
+}
+
+MESHFIX__PRIVATE int meshfix__unit_inconsistent(const meshfix__unit *u)
+{
+    return u->kept > 0 && u->reversed > 0;
+}
+
+MESHFIX__PRIVATE void meshfix__add_to_context(meshfix__scene_context *c, const meshfix__unit *u)
+{
+    c->area += u->area;
+    c->turned += meshfix__unit_turned(u) ? u->area : 0.0;
+    c->inconsistent += meshfix__unit_inconsistent(u) ? u->area : 0.0;
+}
+
+MESHFIX__PRIVATE void meshfix__unit_features(const meshfix__unit *u, const meshfix__scene_context *c,
+                                            double f[MESHFIX__FEATURES])
+{
+    double total = u->kept + u->reversed, side = u->turn ? -1.0 : 1.0;
+    double given = total > 0 ? side * (u->kept - u->reversed) / total : 0.0;
+    double others = c->area - u->area, share = c->area > 0 ? u->area / c->area : 1.0;
+    double scale = share > 1e-12 ? MESHFIX_LOG(share) / MESHFIX_LOG(1e12) : -1.0;
+    int none = u->kind == MESHFIX_EVIDENCE_NONE, consistent = !meshfix__unit_inconsistent(u);
+    f[0] = 1.0;
+    f[1] = (double)u->margin;
+    f[2] = given;                     /* the winding as given, for the side decided */
+    f[3] = (double)consistent;        /* one way throughout as given */
+    f[4] = (double)(given < 0);       /* turned against its majority */
+    f[5] = (double)(u->kind == MESHFIX_EVIDENCE_VOLUME);
+    f[6] = (double)(u->kind == MESHFIX_EVIDENCE_PARITY);
+    f[7] = (double)(u->kind == MESHFIX_EVIDENCE_VISIBILITY);
+    f[8] = (double)(u->kind == MESHFIX_EVIDENCE_NORMALS);
+    f[9] = u->weight > 0 ? side * u->mean : 0.0; /* the geometric vote, for the side decided */
+    f[10] = u->normals_area > 0 ? side * u->normals / u->normals_area : 0.0;
+    f[11] = (double)(u->closed == MESHFIX__CLOSED);
+    f[12] = (double)(u->closed == MESHFIX__NEARLY_CLOSED || u->closed == MESHFIX__GAPPED);
+    f[13] = scale < -1.0 ? 0.0 : scale; /* -1 .. 0: a millionth of the call's area is -0.5 */
+    f[14] = (double)(u->cavity || u->reversed_prior);
+    f[15] = (double)(none && consistent); /* kept as given for lack of evidence */
+    f[16] = others > 0 ? (c->turned - (meshfix__unit_turned(u) ? u->area : 0.0)) / others : 0.0;
+    f[17] = others > 0 ? (c->inconsistent - (consistent ? 0.0 : u->area)) / others : 0.0;
+    f[18] = none ? f[16] : 0.0; /* kept as given where the file was turned elsewhere: a coin */
+    f[19] = none ? f[17] : 0.0;
+    f[20] = (double)(u->margin < 0.25f);
+    f[21] = (double)(u->margin < 0.5f);
+    f[22] = f[4] * (1.0 - f[16]); /* turned where the rest of the file was not */
+    f[23] = f[6] * f[21];          /* crossings that barely outweighed the winding as given */
+}
+
+/* MESHFIX_FIT_ROW(patch, features, count): what tests/eval's programs
+   record to fit the weights above, patch by patch (AUTO only). */
+#ifdef MESHFIX_FIT_ROW
+#define meshfix__fit_row(m, p, u, context)                                                                             \
+    do {                                                                                                               \
+        if ((m)->policy == MESHFIX_POLICY_AUTO) {                                                                      \
+            double fit_features_[MESHFIX__FEATURES];                                                                   \
+            meshfix__unit_features((u), (context), fit_features_);                                                     \
+            MESHFIX_FIT_ROW((p), fit_features_, MESHFIX__FEATURES);                                                    \
+        }                                                                                                              \
+    } while (0)
+#else
+#define meshfix__fit_row(m, p, u, context) ((void)0)
+#endif
+
+MESHFIX__PRIVATE float meshfix__calibrate(const meshfix__unit *u, const meshfix__scene_context *c)
+{
+    double f[MESHFIX__FEATURES], z = 0.0;
+    int i;
+    meshfix__unit_features(u, c, f);
+    for (i = 0; i < MESHFIX__FEATURES; ++i)
+        z += meshfix__confidence_weights[i] * f[i];
+    return (float)(1.0 / (1.0 + MESHFIX_EXP(-z)));
 }
 
 /* Whether evidence of weight w could turn the unit at all. */
@@ -6411,7 +6519,7 @@ MESHFIX__PRIVATE void meshfix__verdict_follow(meshfix__unit *u, double sigma, do
     double margin = MESHFIX_FABS(u->mean) - sigma * u->error;
     if (margin > least) {
         u->turn = u->mean < 0;
-        u->confidence = (float)meshfix__mind(1.0, margin);
+        u->margin = u->confidence = (float)meshfix__mind(1.0, margin);
         return;
     }
     u->weight = 0;
@@ -6466,8 +6574,15 @@ MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, unsigned int
             u->kind = MESHFIX_EVIDENCE_VOLUME;
             u->weight = MESHFIX__WEIGHT_STRONG;
             u->mean = s->volume_relative > 0 ? 1.0 : -1.0;
+            u->closed = MESHFIX__CLOSED;
         }
         meshfix__verdict_from_weights(u, sigma);
+        if (policy == MESHFIX_POLICY_AUTO) {
+            meshfix__scene_context alone = {0, 0, 0};
+            meshfix__add_to_context(&alone, u);
+            u->confidence = meshfix__calibrate(u, &alone);
+            meshfix__fit_row(m, p, u, &alone);
+        }
     }
 }
 
@@ -6490,14 +6605,16 @@ MESHFIX__PRIVATE void meshfix__decide(meshfix__mesh *m, unsigned int p, unsigned
 }
 
 /* Each patch takes its unit's verdict, through its frame in the unit. */
-MESHFIX__PRIVATE void meshfix__apply_units(meshfix__geometry *g)
+MESHFIX__PRIVATE void meshfix__apply_units(meshfix__geometry *g, const meshfix__scene_context *context)
 {
     meshfix__mesh *m = g->m;
     unsigned int p;
     for (p = 0; p < m->patch_count; ++p) {
         const meshfix__unit *u = &g->units[g->patch_unit[p]];
         meshfix__decide(m, p, g->patch_turn[p] ^ u->turn, u->confidence, u->kind);
+        meshfix__fit_row(m, p, u, context);
     }
+    (void)context;
 }
 
 /* The verdict of patch p: the geometric policies decided it per unit
@@ -6659,6 +6776,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
     meshfix__merge merge;
     double total_area;
     int *net = NULL, ok = 0;
+    meshfix__scene_context context = {0, 0, 0};
     unsigned int u;
     MESHFIX_MEMSET(&merge, 0, sizeof(merge));
     if (!meshfix__measure_coherence(g, &coherence) || !meshfix__alloc_merge(g, &merge, 0) ||
@@ -6687,8 +6805,13 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
         meshfix__gather_evidence(g, MESHFIX__PHASE_OPEN, total_area);
     }
     for (u = 0; u < g->unit_count; ++u) {
-        const meshfix__unit *x = &g->units[u];
         meshfix__decide_unit(&g->units[u], g->sigma);
+        meshfix__add_to_context(&context, &g->units[u]);
+    }
+    for (u = 0; u < g->unit_count; ++u) {
+        const meshfix__unit *x = &g->units[u];
+        if (m->policy == MESHFIX_POLICY_AUTO)
+            g->units[u].confidence = meshfix__calibrate(x, &context);
         r->evidence.shells_inward += (size_t)(x->outward * (x->turn ? -1 : 1) < 0);
         r->evidence.rays_cast += x->rays;
         MESHFIX_TRACE(("meshfix: unit %u: area %g, as given %g / %g, volume %g, closed %d, unmatched %g of %g; "
@@ -6697,7 +6820,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_shells(meshfix__geometry *g, meshfix_rep
                        (int)x->kind, x->mean,
                        x->error, x->weight, x->turn, (double)x->confidence, x->cavity ? ", cavity" : ""));
     }
-    meshfix__apply_units(g);
+    meshfix__apply_units(g, &context);
     for (u = 0; u < coherence.pair_count; ++u) {
         unsigned int a = meshfix__merge_turn(&merge, coherence.pairs[u].a), b = meshfix__merge_turn(&merge, coherence.pairs[u].b);
         r->evidence.pairs_conflicting += (size_t)(coherence.pairs[u].c * ((a ^ b) ? -1.0 : 1.0) < 0);
@@ -7114,6 +7237,19 @@ MESHFIX__PRIVATE void meshfix__add_patch_to_component(const meshfix__mesh *m, un
 }
 
 
+/* A verdict is doubtful below this confidence, or below min_confidence
+   where that is higher. AUTO's confidence is a probability: below 0.9 a
+   verdict is wrong more than once in ten. The other policies' is the
+   margin of their evidence, doubtful below half. */
+#define MESHFIX__DOUBTFUL_PROBABILITY 0.9
+#define MESHFIX__DOUBTFUL_MARGIN 0.5
+
+MESHFIX__PRIVATE double meshfix__doubtful_below(const meshfix_options *o, int policy)
+{
+    double bar = policy == MESHFIX_POLICY_AUTO ? MESHFIX__DOUBTFUL_PROBABILITY : MESHFIX__DOUBTFUL_MARGIN;
+    return meshfix__maxd(bar, (double)o->evidence.min_confidence);
+}
+
 MESHFIX__PRIVATE void meshfix__count_verdict(const meshfix__unit *u, size_t triangles, double area, double doubtful,
                                             meshfix_report *r)
 {
@@ -7149,7 +7285,7 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
             meshfix__unit verdict;
             meshfix__patch_verdict(m, p, policy, &s, &verdict);
             meshfix__count_verdict(&verdict, m->patch_start[p + 1] - m->patch_start[p], s.area,
-                                   meshfix__maxd(0.5, (double)o->evidence.min_confidence), r);
+                                   meshfix__doubtful_below(o, policy), r);
             if (m->outputs->patch_confidence != NULL && p < m->outputs->patch_confidence_capacity)
                 m->outputs->patch_confidence[p] = verdict.confidence;
             if (m->outputs->patch_evidence != NULL && p < m->outputs->patch_evidence_capacity)

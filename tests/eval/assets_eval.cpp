@@ -48,11 +48,17 @@
 
    Build:  make build/assets_eval
    Usage:  assets_eval [--split tune|heldout|all] [--family NAME] [--match TEXT]
-                       [--seed N] [--worst N] [--tsv FILE] [--summary FILE] [--explain] [DIR]
+                       [--seed N] [--worst N] [--tsv FILE] [--summary FILE] [--explain] [--rows FILE] [DIR]
+           --rows: a line per patch for tests/eval/fit.c; the output ends
+           with the reliability of the reported confidence per mode
+           (tests/eval/calibration.h).
            DIR defaults to build/assets; --split defaults to tune: the
            held-out half is scored only when asked by name.
    Exit:   0; 1 for bad usage or an unreadable manifest. */
 #include "tool.h"
+extern "C" {
+#include "calibration.h"
+}
 
 #include <algorithm>
 #include <array>
@@ -372,6 +378,24 @@ void explain_damage(const tool::Unit &u, const tool::UnitResult &r, const std::v
     }
 }
 
+/* The reliability of the reported confidence, per mode, over both inputs
+   of every unit (the library's own flips, before faces are turned whole). */
+calib_table reliability[2];
+
+void score_confidence(const tool::UnitResult &r, const std::vector<signed char> &truth, const tool::Unit &unit,
+                      const std::vector<unsigned char> *reversed_face, calib_table &table)
+{
+    if (r.status != MESHFIX_OK)
+        return;
+    std::vector<unsigned char> right_as_given(truth.size());
+    for (size_t t = 0; t < truth.size(); ++t) {
+        bool reversed = reversed_face != nullptr && (*reversed_face)[unit.triangle_face[t]] != 0;
+        right_as_given[t] = truth[t] == 0 ? 2 : (truth[t] > 0) != reversed;
+    }
+    calib_score(&table, truth.size(), right_as_given.data(), r.triangle_flipped.data(), r.patch_ids.data(),
+                r.patch_confidence.data(), r.after.mesh.patches);
+}
+
 void score_unit(const tool::Unit &shipped, size_t unit_index, unsigned seed, FileScore &s)
 {
     std::vector<signed char> truth = judge(shipped, s);
@@ -401,8 +425,10 @@ void score_unit(const tool::Unit &shipped, size_t unit_index, unsigned seed, Fil
             unit.vertex_normals.clear();
         }
         double t0 = now_ms();
+        calib_begin();
         tool::UnitResult r = tool::repair_unit(unit, settings);
         ms.repair_ms += now_ms() - t0;
+        score_confidence(r, truth, unit, nullptr, reliability[m]);
         if (r.status != MESHFIX_OK) {
             ms.refused++;
         } else {
@@ -438,9 +464,11 @@ void score_unit(const tool::Unit &shipped, size_t unit_index, unsigned seed, Fil
         for (size_t t = 0; t < n; ++t)
             if (reversed_face[unit.triangle_face[t]])
                 std::swap(unit.indices[3 * t + 1], unit.indices[3 * t + 2]);
+        calib_begin();
         tool::UnitResult h = tool::repair_unit(unit, settings);
         if (h.status != MESHFIX_OK)
             ms.refused++;
+        score_confidence(h, truth, unit, &reversed_face, reliability[m]);
         std::vector<unsigned char> hflip = turned(unit, h);
         for (size_t t = 0; t < n; ++t) {
             if (truth[t] == 0)
@@ -670,7 +698,7 @@ bool read_manifest(const std::string &path, std::vector<Entry> &out)
 int usage()
 {
     std::fprintf(stderr, "usage: assets_eval [--split tune|heldout|all] [--family NAME] [--match TEXT] [--seed N]\n"
-                         "                   [--worst N] [--tsv FILE] [--summary FILE] [--explain] [DIR]\n");
+                         "                   [--worst N] [--tsv FILE] [--summary FILE] [--explain] [--rows FILE] [DIR]\n");
     return 1;
 }
 
@@ -712,6 +740,9 @@ int main(int argc, char **argv)
                 return usage();
         } else if (a == "--explain") {
             explain = true;
+        } else if (a == "--rows") {
+            if (!value(v) || !calib_open_rows(v.c_str()))
+                return usage();
         } else if (a == "--summary") {
             if (!value(summary_path))
                 return usage();
@@ -748,6 +779,11 @@ int main(int argc, char **argv)
     std::string text = summary(files, seed, worst, split);
     text += fmt("\nwall time %.1f s (one thread)\n", (now_ms() - start) / 1000.0);
     std::fputs(text.c_str(), stdout);
+    for (int m = 0; m < 2; ++m) {
+        std::printf("\nreliability of the reported confidence, %s (as shipped and half reversed):\n", MODE_NAMES[m]);
+        calib_print(&reliability[m], stdout);
+    }
+    calib_close_rows();
     if (!summary_path.empty()) {
         std::ofstream out(summary_path);
         out << text;

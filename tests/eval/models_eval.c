@@ -28,13 +28,17 @@
 
    Printed: per model and corruption the % of triangles facing as shipped
    after the repair, then per corruption the mean over models and the
-   worst model, and the mean of every (model, corruption) and the worst.
+   worst model, and the mean of every (model, corruption) and the worst;
+   then the reliability of the reported confidence (tests/eval/calibration.h).
 
    Build:  cc -std=c99 -O2 -I. tests/eval/models_eval.c -lm
-   Usage:  models_eval [--policy NAME] [--seed N] [--quiet] FILE_OR_DIRECTORY...
+   Usage:  models_eval [--policy NAME] [--seed N] [--quiet] [--rows FILE] FILE_OR_DIRECTORY...
+           --rows: a line per patch for tests/eval/fit.c (tests/eval/calibration.h)
            (directories searched recursively for .stl .obj .off .ply)
    Exit:   0; 1 for bad usage; 2 when a meshfix call failed. */
 #define _POSIX_C_SOURCE 200809L
+#define CALIBRATION_IMPLEMENTATION
+#include "tests/eval/calibration.h"
 #define MESHFIX_IMPLEMENTATION
 #include "meshfix.h"
 #define MESHIO_IMPLEMENTATION
@@ -64,6 +68,7 @@ typedef struct totals {
 static meshfix_policy policy = MESHFIX_POLICY_AUTO;
 static unsigned long long base_seed = 1;
 static int quiet = 0;
+static calib_table reliability;
 
 /* Whether the shipped model is closed, consistent and outward. */
 static int usable(const mio_mesh *m)
@@ -142,19 +147,30 @@ static double score(const mio_mesh *m, const unsigned char *truth)
 {
     size_t n = m->index_count / 3, t, right = 0;
     unsigned char *flipped = (unsigned char *)malloc(n + 1);
+    unsigned int *patch_ids = (unsigned int *)malloc(n * sizeof(unsigned int) + 4);
+    float *confidence = (float *)malloc(n * sizeof(float) + 4);
     meshfix_options o;
     meshfix_outputs out;
-    meshfix_result result;
+    meshfix_report r;
+    meshfix_result result = MESHFIX_ERROR_OUT_OF_MEMORY;
     memset(&o, 0, sizeof(o));
     o.policy = policy;
     memset(&out, 0, sizeof(out));
     out.flipped = flipped;
-    if (flipped == NULL)
-        return -1;
-    result = meshfix_orient(NULL, m->indices, m->index_count, m->positions, m->vertex_count, 12, &o, NULL, &out);
+    out.patch_ids = patch_ids;
+    out.patch_confidence = confidence;
+    out.patch_confidence_capacity = n;
+    if (flipped != NULL && patch_ids != NULL && confidence != NULL) {
+        calib_begin();
+        result = meshfix_orient(NULL, m->indices, m->index_count, m->positions, m->vertex_count, 12, &o, &r, &out);
+    }
     for (t = 0; result == MESHFIX_OK && t < n; ++t)
         right += (size_t)((truth[t] != 0) != (flipped[t] != 0));
+    if (result == MESHFIX_OK)
+        calib_score(&reliability, n, truth, flipped, patch_ids, confidence, r.mesh.patches);
     free(flipped);
+    free(patch_ids);
+    free(confidence);
     return result == MESHFIX_OK ? 100.0 * (double)right / (double)n : -1;
 }
 
@@ -279,12 +295,15 @@ int main(int argc, char **argv)
             base_seed = strtoull(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--quiet") == 0) {
             quiet = 1;
+        } else if (strcmp(argv[i], "--rows") == 0 && i + 1 < argc) {
+            if (!calib_open_rows(argv[++i]))
+                return 1;
         } else {
             files++;
         }
     }
     if (files == 0) {
-        fprintf(stderr, "usage: models_eval [--policy NAME] [--seed N] [--quiet] FILE_OR_DIRECTORY...\n");
+        fprintf(stderr, "usage: models_eval [--policy NAME] [--seed N] [--quiet] [--rows FILE] FILE_OR_DIRECTORY...\n");
         return 1;
     }
     if (!quiet) {
@@ -294,7 +313,7 @@ int main(int argc, char **argv)
         printf("  file\n");
     }
     for (i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--policy") == 0 || strcmp(argv[i], "--seed") == 0) {
+        if (strcmp(argv[i], "--policy") == 0 || strcmp(argv[i], "--seed") == 0 || strcmp(argv[i], "--rows") == 0) {
             ++i;
             continue;
         }
@@ -317,5 +336,8 @@ int main(int argc, char **argv)
     }
     printf("all: mean %.3f%% over %lu (model, corruption), worst %.2f%%\n", all / (double)(tot.models * CORRUPTIONS),
            (unsigned long)(tot.models * CORRUPTIONS), worst);
+    printf("reliability (every patch of every case):\n");
+    calib_print(&reliability, stdout);
+    calib_close_rows();
     return 0;
 }

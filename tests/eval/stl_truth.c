@@ -31,7 +31,11 @@
    --normals passes the stored normals to meshfix as evidence (what the
    command-line tool does with a file's normals).
 
-   Usage:  stl_truth [--policy NAME] [--normals] [--seed N] [--csv] FILE_OR_DIRECTORY...
+   --rows FILE writes a line per patch for tests/eval/fit.c, and the text
+   output ends with the reliability of the reported confidence
+   (tests/eval/calibration.h).
+
+   Usage:  stl_truth [--policy NAME] [--normals] [--seed N] [--csv] [--rows FILE] FILE_OR_DIRECTORY...
            NAME: default (options NULL), auto, seed, majority, outward,
            visibility, up. Directories are searched for *.stl recursively.
    Exit:   0; 1 for bad usage; 2 when a meshfix call failed on a file.
@@ -41,6 +45,8 @@
    checked against its size and every ASCII token is validated; a bad file
    is refused with a message. */
 #define _POSIX_C_SOURCE 200809L
+#define CALIBRATION_IMPLEMENTATION
+#include "tests/eval/calibration.h"
 #define MESHFIX_IMPLEMENTATION
 #include "meshfix.h"
 
@@ -542,24 +548,62 @@ static int allocate_work(file_work *w)
 /* Repairs (indices, positions) under the policy and sets flipped[t] for
    each triangle the call reversed. The one place that runs a policy: new
    options (authored normals as evidence, ...) belong here. */
+static calib_table reliability; /* of the reported confidence, over every repair */
+
+/* The patches of a repair scored against the clear normals into
+   `reliability` (truth per shipped triangle; reversed: the triangles the
+   input reversed from the shipped winding, or NULL). */
+static void score_confidence(const signed char *truth, const unsigned char *reversed, size_t triangles,
+                             const unsigned char *flipped, const unsigned int *patch_ids, const float *confidence,
+                             size_t patches)
+{
+    unsigned char *right_as_given = (unsigned char *)malloc(triangles + 1);
+    size_t t;
+    if (right_as_given == NULL)
+        return;
+    for (t = 0; t < triangles; t++) {
+        int r = reversed != NULL && reversed[t];
+        right_as_given[t] = truth[t] == 0 ? 2 : (truth[t] > 0) != r;
+    }
+    calib_score(&reliability, triangles, right_as_given, flipped, patch_ids, confidence, patches);
+    free(right_as_given);
+}
+
+/* Repairs (indices, positions) under the policy and sets flipped[t] for
+   each triangle the call reversed; scores the confidence it reports. The
+   one place that runs a policy: new options (authored normals as
+   evidence, ...) belong here. */
 static meshfix_result repair(const policy_choice *policy, const float *normals, const unsigned int *indices,
                              size_t triangles, const float *positions, size_t vertex_count, unsigned int *repaired,
-                             unsigned char *flipped, meshfix_report *report)
+                             unsigned char *flipped, meshfix_report *report, const signed char *truth,
+                             const unsigned char *reversed)
 {
     meshfix_options options;
-    meshfix_result r;
+    meshfix_outputs outputs;
+    meshfix_result r = MESHFIX_ERROR_OUT_OF_MEMORY;
+    unsigned int *patch_ids = (unsigned int *)malloc(triangles * sizeof(unsigned int) + 4);
+    float *confidence = (float *)malloc(triangles * sizeof(float) + 4);
     size_t t;
     memset(&options, 0, sizeof(options));
+    memset(&outputs, 0, sizeof(outputs));
     options.policy = policy->policy;
     options.evidence.triangle_normals = normals; /* the stored normals as evidence (--normals), or NULL */
-    r = meshfix_orient(repaired, indices, 3 * triangles, positions, vertex_count, 3 * sizeof(float),
-                       policy->named || normals != NULL ? &options : NULL, report, NULL);
-    if (r != MESHFIX_OK)
-        return r;
-    /* a flip writes (a, c, b): the second index tells */
-    for (t = 0; t < triangles; t++)
-        flipped[t] = repaired[3 * t + 1] != indices[3 * t + 1];
-    return MESHFIX_OK;
+    outputs.patch_ids = patch_ids;
+    outputs.patch_confidence = confidence;
+    outputs.patch_confidence_capacity = triangles;
+    calib_begin();
+    if (patch_ids != NULL && confidence != NULL)
+        r = meshfix_orient(repaired, indices, 3 * triangles, positions, vertex_count, 3 * sizeof(float),
+                           policy->named || normals != NULL ? &options : NULL, report, &outputs);
+    if (r == MESHFIX_OK) {
+        /* a flip writes (a, c, b): the second index tells */
+        for (t = 0; t < triangles; t++)
+            flipped[t] = repaired[3 * t + 1] != indices[3 * t + 1];
+        score_confidence(truth, reversed, triangles, flipped, patch_ids, confidence, report->mesh.patches);
+    }
+    free(patch_ids);
+    free(confidence);
+    return r;
 }
 
 static void judge_all(file_work *w, file_score *score)
@@ -666,7 +710,7 @@ static meshfix_result repair_both(file_work *w, const policy_choice *policy, int
     const float *normals = use_normals ? w->mesh.normals : NULL;
     double start = now_ms();
     meshfix_result r = repair(policy, normals, w->indices, n, w->mesh.corners, 3 * n, w->repaired, w->flipped,
-                              &report);
+                              &report, w->truth, NULL);
     score->orient_ms = now_ms() - start;
     if (r != MESHFIX_OK)
         return r;
@@ -675,7 +719,8 @@ static meshfix_result repair_both(file_work *w, const policy_choice *policy, int
     score->edges_boundary = report.mesh.edges_boundary;
     score->edges_inconsistent = report.edges_inconsistent_before;
     reverse_random_half(w, seed);
-    return repair(policy, normals, w->altered, n, w->mesh.corners, 3 * n, w->repaired, w->flipped_half, NULL);
+    return repair(policy, normals, w->altered, n, w->mesh.corners, 3 * n, w->repaired, w->flipped_half, &report,
+                  w->truth, w->reversed);
 }
 
 static file_status score_file(const char *path, const policy_choice *policy, int use_normals, unsigned int seed,
@@ -988,7 +1033,7 @@ typedef struct settings {
 static int usage(void)
 {
     fprintf(stderr, "usage: stl_truth [--policy default|auto|seed|majority|outward|visibility|up|normals] "
-                    "[--normals] [--seed N] [--csv] FILE_OR_DIRECTORY...\n");
+                    "[--normals] [--seed N] [--csv] [--rows FILE] FILE_OR_DIRECTORY...\n");
     return 1;
 }
 
@@ -1006,6 +1051,9 @@ static int parse_settings(int argc, char **argv, settings *s)
             s->csv = 1;
         } else if (strcmp(argv[i], "--normals") == 0) {
             s->normals = 1;
+        } else if (strcmp(argv[i], "--rows") == 0 && i + 1 < argc) {
+            if (!calib_open_rows(argv[++i]))
+                return 0;
         } else if (strcmp(argv[i], "--policy") == 0 && i + 1 < argc) {
             s->policy = find_policy(argv[++i]);
             if (s->policy == NULL)
@@ -1075,8 +1123,12 @@ int main(int argc, char **argv)
         report_file(&s, list.paths[f], status, &score, error, &all);
         fflush(stdout);
     }
-    if (!s.csv)
+    if (!s.csv) {
         print_text_totals(&all);
+        printf("reliability of the reported confidence (both repairs of every file, clear triangles):\n");
+        calib_print(&reliability, stdout);
+    }
+    calib_close_rows();
     free_paths(&list);
     return all.failed > 0 ? 2 : 0;
 }

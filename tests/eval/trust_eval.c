@@ -26,12 +26,18 @@
    when most of its area faces the intended way after the repair).
 
    Build:  cc -std=c99 -O2 -I. tests/eval/trust_eval.c -lm
+   --rows FILE writes a line per patch for tests/eval/fit.c; the output
+   ends with the reliability of the reported confidence
+   (tests/eval/calibration.h).
+
    Usage:  trust_eval [--size small|large] [--scene NAME]... [--policy NAME]
                       [--k N]... [--seams exact|gap|jitter]... [--jitter J] [--seed N]
                       [--ablation] [--csv]
            --jitter: the seam offsets' largest length, of the box diagonal (1e-4)
    Exit:   0; 1 for bad usage; 2 when a meshfix call failed. */
 #define _POSIX_C_SOURCE 200809L
+#define CALIBRATION_IMPLEMENTATION
+#include "tests/eval/calibration.h"
 #define MESHFIX_IMPLEMENTATION
 #include "meshfix.h"
 #define MESHIO_IMPLEMENTATION
@@ -78,7 +84,8 @@ typedef struct score {
 static int usage(void)
 {
     fprintf(stderr, "usage: trust_eval [--size small|large] [--scene NAME]... [--policy NAME] [--k N]...\n"
-                    "                  [--seams exact|gap|jitter]... [--seed N] [--ablation] [--csv]\n");
+                    "                  [--seams exact|gap|jitter]... [--seed N] [--ablation] [--csv]\n"
+                    "                  [--rows FILE]\n");
     return 1;
 }
 
@@ -115,6 +122,10 @@ static int parse(int argc, char **argv, settings *s)
             s->jitter = strtod(value, NULL), ++i;
         } else if (strcmp(arg, "--seed") == 0) {
             s->seed = strtoull(value, NULL, 10), ++i;
+        } else if (strcmp(arg, "--rows") == 0) {
+            if (!calib_open_rows(value))
+                return 0;
+            ++i;
         } else {
             return 0;
         }
@@ -142,6 +153,8 @@ static double now_ms(void)
     return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
 }
 
+static calib_table reliability; /* of the reported confidence, over every repair */
+
 /* Repairs `indices` (the scene's triangles as corrupted; truth as they
    stand) and scores the result. */
 static int repair(const scene *s, unsigned int *indices, const unsigned char *truth, meshfix_policy policy, score *sc)
@@ -149,6 +162,7 @@ static int repair(const scene *s, unsigned int *indices, const unsigned char *tr
     size_t n = s->mesh.index_count / 3, t, p, capacity = n + 1;
     unsigned char *flipped = (unsigned char *)malloc(n + 1), *evidence = (unsigned char *)malloc(capacity);
     unsigned int *patch_ids = (unsigned int *)malloc(n * sizeof(unsigned int) + 1);
+    float *confidence = (float *)malloc(capacity * sizeof(float));
     double *right_area = (double *)calloc(capacity, sizeof(double)), *all_area = (double *)calloc(capacity, sizeof(double));
     meshfix_options o;
     meshfix_outputs outputs;
@@ -156,7 +170,7 @@ static int repair(const scene *s, unsigned int *indices, const unsigned char *tr
     meshfix_result result;
     double start;
     memset(sc, 0, sizeof(*sc));
-    if (!flipped || !evidence || !patch_ids || !right_area || !all_area) {
+    if (!flipped || !evidence || !patch_ids || !confidence || !right_area || !all_area) {
         result = MESHFIX_ERROR_OUT_OF_MEMORY;
         goto done;
     }
@@ -167,6 +181,9 @@ static int repair(const scene *s, unsigned int *indices, const unsigned char *tr
     outputs.patch_ids = patch_ids;
     outputs.patch_evidence = evidence;
     outputs.patch_evidence_capacity = capacity;
+    outputs.patch_confidence = confidence;
+    outputs.patch_confidence_capacity = capacity;
+    calib_begin();
     start = now_ms();
     result = meshfix_orient(NULL, indices, s->mesh.index_count, s->mesh.positions, s->mesh.vertex_count, 12, &o, &r,
                             &outputs);
@@ -188,6 +205,7 @@ static int repair(const scene *s, unsigned int *indices, const unsigned char *tr
             right_area[patch_ids[t]] += after ? area : 0.0;
         }
     }
+    calib_score(&reliability, n, truth, flipped, patch_ids, confidence, r.mesh.patches);
     for (p = 0; p < r.mesh.patches && p < capacity; ++p) {
         unsigned kind = evidence[p] < EVIDENCE_KINDS ? evidence[p] : 0;
         sc->decided[kind]++;
@@ -197,6 +215,7 @@ done:
     free(flipped);
     free(evidence);
     free(patch_ids);
+    free(confidence);
     free(right_area);
     free(all_area);
     return result == MESHFIX_OK;
@@ -293,5 +312,8 @@ int main(int argc, char **argv)
         if (st.ablation)
             print_ablation(&total[i]);
     }
+    printf("reliability of the reported confidence (every repair):\n");
+    calib_print(&reliability, stdout);
+    calib_close_rows();
     return 0;
 }
