@@ -143,8 +143,13 @@ demo: $(B)/meshfix $(B)/demo_mesh
 # `make test` installs what the suites need first (tests/install_deps.sh:
 # with apt-get as root; otherwise it names the apt-get line and stops),
 # then builds with what is installed now; `make test-only` skips that step
+# make test also fetches the corpus (tests/corpus/fetch.sh: real models from
+# Debian packages, about 250 MB, downloaded once into build/corpus, nothing
+# installed): the trust suite cuts OpenSCAD's projection.stl from it
 test:
 	@bash tests/install_deps.sh
+	@[ -f $(B)/corpus/manifest.tsv ] || bash tests/corpus/fetch.sh $(B)/corpus >$(B)/corpus.log 2>&1 || \
+	    echo "the corpus could not be fetched (see $(B)/corpus.log): its tests say SKIP"
 	@$(MAKE) --no-print-directory test-only
 
 test-only: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES:%=$(B)/%_asan) \

@@ -4657,8 +4657,8 @@ MESHFIX__PRIVATE void meshfix__segment_cells(const meshfix__grid *grid, const me
 }
 
 /* Cell ranges are walked with a double counter: past 2^52, ++x would not
-   move. An edge that spans many cells neither enters the grid nor
-   searches it. */
+   move. An edge that spans many cells does not search the grid: the
+   long edges search a grid of their own (meshfix__too_long_for). */
 MESHFIX__PRIVATE int meshfix__cells_usable(const double lo[3], const double hi[3])
 {
     int k;
@@ -4666,6 +4666,21 @@ MESHFIX__PRIVATE int meshfix__cells_usable(const double lo[3], const double hi[3
         if (!(lo[k] > -1e12 && hi[k] < 1e12 && hi[k] - lo[k] <= 16.0))
             return 0;
     return 1;
+}
+
+/* Whether segment s spans too many cells of width `cell` (within reach)
+   to search that grid: such segments (the long edges of a box cut beside
+   a finely meshed part) get a grid of their own, a second pass with
+   cells as wide as they are long. cell 0: none is. */
+MESHFIX__PRIVATE int meshfix__too_long_for(double cell, const meshfix__segment *s, double reach)
+{
+    meshfix__grid grid;
+    double lo[3], hi[3];
+    if (cell == 0)
+        return 1;
+    grid.cell = cell;
+    meshfix__segment_cells(&grid, s, reach, lo, hi);
+    return !meshfix__cells_usable(lo, hi);
 }
 
 /* The cell of a point; 0 when it is too far out to walk to. */
@@ -4686,12 +4701,14 @@ MESHFIX__PRIVATE int meshfix__point_cell(const meshfix__grid *grid, const double
    and those have a point near each of these). Pass 0 counts, pass 1
    places. */
 MESHFIX__PRIVATE void meshfix__grid_pass(meshfix__grid *grid, const meshfix__segment *segments, unsigned int count,
-                                        int place)
+                                        double beyond, double reach, int place)
 {
     unsigned int i;
     int j, k;
     for (i = 0; i < count; ++i) {
         double points[3][3], cells[3][3];
+        if (beyond != 0 && !meshfix__too_long_for(beyond, &segments[i], reach))
+            continue;
         for (k = 0; k < 3; ++k) {
             points[0][k] = segments[i].p[k];
             points[1][k] = 0.5 * (segments[i].p[k] + segments[i].q[k]);
@@ -4812,14 +4829,15 @@ MESHFIX__PRIVATE size_t meshfix__grid_buckets(size_t segments)
 }
 
 MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix__segment *segments,
-                                            unsigned int n, double reach, meshfix__grid *grid)
+                                            unsigned int n, double reach, double beyond, meshfix__grid *grid)
 {
     double average = 0;
-    size_t buckets, k;
+    size_t buckets, k, indexed = 0;
     unsigned int i;
     for (i = 0; i < n; ++i)
-        average += segments[i].length;
-    average /= n;
+        if (beyond == 0 || meshfix__too_long_for(beyond, &segments[i], reach))
+            average += segments[i].length, indexed++;
+    average /= (double)(indexed ? indexed : 1);
     grid->cell = meshfix__maxd(reach, average);
     buckets = meshfix__grid_buckets(n);
     grid->mask = buckets - 1;
@@ -4831,7 +4849,7 @@ MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix
         return 0;
     MESHFIX_MEMSET(grid->start, 0, (buckets + 1) * sizeof(unsigned int));
     MESHFIX_MEMSET(grid->occupied, 0, buckets / 8);
-    meshfix__grid_pass(grid, segments, n, 0);
+    meshfix__grid_pass(grid, segments, n, beyond, reach, 0);
     for (k = 0; k < buckets; ++k) {
         if (grid->start[k + 1] != 0)
             grid->occupied[k >> 3] = (unsigned char)(grid->occupied[k >> 3] | (1u << (k & 7)));
@@ -4840,7 +4858,7 @@ MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix
     grid->items = (meshfix__cell_item *)meshfix__array(&g->arena, g->arena.plan.grid_items, grid->start[buckets]);
     if (grid->items == NULL)
         return 0;
-    meshfix__grid_pass(grid, segments, n, 1); /* start[b] now ends bucket b */
+    meshfix__grid_pass(grid, segments, n, beyond, reach, 1); /* start[b] now ends bucket b */
     return 1;
 }
 
@@ -4893,6 +4911,7 @@ typedef struct meshfix__partner_task {
     unsigned int count;
     const meshfix__grid *grid;
     double reach, longest_half;
+    double beyond; /* the second pass: only segments too long for cells this wide (0: the first, all) */
 } meshfix__partner_task;
 
 /* Segments [first, end): each reads the others' geometry and writes only
@@ -4909,6 +4928,8 @@ MESHFIX__PRIVATE void meshfix__find_partners(const meshfix__partner_task *task, 
         unsigned int best_id = MESHFIX__NONE, looked = 0;
         double middle[3];
         int ring, axis;
+        if (task->beyond != 0 && !meshfix__too_long_for(task->beyond, s, reach))
+            continue; /* found its partner in the first pass */
         meshfix__segment_cells(grid, s, reach, lo, hi);
         meshfix__segment_cells(grid, s, 0.0, inner_lo, inner_hi);
         /* a segment too long for the grid searches nothing: as if it found
@@ -4976,7 +4997,7 @@ MESHFIX__PRIVATE void meshfix__partner_chunk(void *context, size_t chunk)
 /* Every segment's partner, on the caller's threads if it gave a
    parallel_for (the same partners however the chunks run). */
 MESHFIX__PRIVATE void meshfix__find_all_partners(const meshfix__geometry *g, meshfix__segment *segments,
-                                                unsigned int n, const meshfix__grid *grid, double reach)
+                                                unsigned int n, const meshfix__grid *grid, double reach, double beyond)
 {
     meshfix__partner_task task;
     size_t chunks = ((size_t)n + MESHFIX__SEGMENTS_PER_TASK - 1) / MESHFIX__SEGMENTS_PER_TASK, c;
@@ -4985,14 +5006,25 @@ MESHFIX__PRIVATE void meshfix__find_all_partners(const meshfix__geometry *g, mes
     task.count = n;
     task.grid = grid;
     task.reach = reach;
+    task.beyond = beyond;
     task.longest_half = 0;
     for (i = 0; i < n; ++i)
-        task.longest_half = meshfix__maxd(task.longest_half, 0.5 * segments[i].length);
+        if (beyond == 0 || meshfix__too_long_for(beyond, &segments[i], reach))
+            task.longest_half = meshfix__maxd(task.longest_half, 0.5 * segments[i].length);
     if (g->o->parallel_for != NULL && chunks > 1)
         g->o->parallel_for(meshfix__partner_chunk, &task, chunks, g->o->parallel_user);
     else
         for (c = 0; c < chunks; ++c)
             meshfix__partner_chunk(&task, c);
+}
+
+MESHFIX__PRIVATE int meshfix__any_too_long(const meshfix__segment *segments, unsigned int n, double cell, double reach)
+{
+    unsigned int i;
+    for (i = 0; i < n; ++i)
+        if (meshfix__too_long_for(cell, &segments[i], reach))
+            return 1;
+    return 0;
 }
 
 /* Stage 4: the pairs the partners give. A boundary edge with no real
@@ -5234,9 +5266,17 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
         goto done;
     out->segment_count = meshfix__collect_segments(g, scale, out->segments);
     if (out->segment_count != 0) {
-        if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, &grid))
+        double first_cell;
+        if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, 0.0, &grid))
             goto done;
-        meshfix__find_all_partners(g, out->segments, out->segment_count, &grid, reach);
+        meshfix__find_all_partners(g, out->segments, out->segment_count, &grid, reach, 0.0);
+        first_cell = grid.cell;
+        if (meshfix__any_too_long(out->segments, out->segment_count, first_cell, reach)) {
+            /* the same arrays again, for the long segments alone */
+            if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, first_cell, &grid))
+                goto done;
+            meshfix__find_all_partners(g, out->segments, out->segment_count, &grid, reach, first_cell);
+        }
         meshfix__pair_partners(out->segments, out->segment_count, out->pairs, &out->pair_count);
     }
     meshfix__ring_pairs(g, scale, work, angle, members, out->pairs, &out->pair_count);
@@ -6006,9 +6046,9 @@ MESHFIX__PRIVATE void meshfix__verdict_from_weights(meshfix__unit *u, double sig
 #define MESHFIX__FEATURES 24
 static const double meshfix__confidence_weights[MESHFIX__FEATURES] = {
     /* fitted: begin */
-    5.0654, -2.2967, 0.6128, -0.1825, 0.6376, 1.2745, -1.7334, -1.5888,
-    0.0801, 3.5417, 8.8986, -1.0679, 2.3573, 6.8814, 1.5046, 1.1238,
-    -1.5990, 0.5974, 0.8912, -1.7769, -1.2975, 0.4583, -2.5351, -0.6637
+    4.6647, -1.7912, 0.7297, -0.5660, 0.6467, 0.4125, -1.3975, -1.2540,
+    0.4729, 3.0777, 8.5605, 0.2874, 0.1300, 7.1054, 1.1057, 1.3699,
+    -0.6749, 0.4276, 0.0738, -1.5736, -1.1354, 0.7050, -2.7461, -0.5299
     /* fitted: end */
 };
 

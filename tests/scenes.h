@@ -68,7 +68,12 @@ int scene_assembly_sealed(scene *s, unsigned detail); /* sealed housing, parts o
 int scene_parts(scene *s, unsigned detail);           /* every part generator, side by side */
 int scene_spider(scene *s, unsigned detail);          /* assimp's spider.obj, closed parts, subdivided */
 int scene_city(scene *s, unsigned detail);            /* 26 closed buildings (boxes, L and U blocks) on a block */
+/* Two real files from the project's corpus (tests/corpus/fetch.sh, under
+   $MESHFIX_CORPUS, default build/corpus); -1 when it is missing. */
+int scene_projection_box(scene *s, unsigned detail); /* OpenSCAD's projection.stl: a box, its shell wound inward */
+int scene_buildings(scene *s, unsigned detail);      /* OpenFOAM's windAroundBuildings buildings.obj, 26 closed */
 int scene_cavity_box(scene *s, unsigned detail);      /* a box around a closed shell wound inward (a hollow) */
+int scene_cavity_coarse(scene *s, unsigned detail);   /* a box of 108 triangles around a fine hollow (CAD beside a scan) */
 int scene_crossing(scene *s, unsigned detail);        /* three closed shells through each other, each outward */
 int scene_cad_part(scene *s, unsigned detail);        /* a machined block: through-holes, a pocket, a slot */
 
@@ -540,6 +545,18 @@ int scene_cavity_box(scene *s, unsigned detail)
                              scene_add(s, &g, scene_hollow(&g, rings, 1.0f), "hollow", 0));
 }
 
+/* The same, but the box is 108 triangles and the hollow fine (detail
+   rings): cut, the box's seams are a hundred times longer than the
+   hollow's, as where a CAD box holds a scanned part. */
+int scene_cavity_coarse(scene *s, unsigned detail)
+{
+    static const float lo[3] = {-1.5f, -1.5f, -1.5f}, hi[3] = {1.5f, 1.5f, 1.5f};
+    mio_mesh g;
+    scene_init(s);
+    return scene_done(s, scene_add(s, &g, gen_box(&g, 3, lo, hi), "box", 0) &&
+                             scene_add(s, &g, scene_hollow(&g, detail > 3 ? detail : 3, 0.5f), "hollow", 0));
+}
+
 /* Three closed shells through each other (a sphere, a box and a torus, as
    overlapping parts of an assembly or a soup of solids are exported):
    each faces out of its own material. */
@@ -672,6 +689,83 @@ done:
     return result;
 }
 
+static const char *scene_corpus_dir(void)
+{
+    const char *dir = getenv("MESHFIX_CORPUS");
+    return dir != NULL ? dir : "build/corpus";
+}
+
+/* A corpus file's closed parts, outward; -1 when missing or not closed. */
+static int scene_load_closed(mio_mesh *g, const char *package, const char *file)
+{
+    char path[1024], error[256];
+    int made;
+    snprintf(path, sizeof(path), "%s/%s/%s", scene_corpus_dir(), package, file);
+    if (!mio_load(path, g, error, sizeof(error)))
+        return -1;
+    made = scene_make_closed(g);
+    if (made != 1)
+        mio_free(g);
+    return made;
+}
+
+/* The gapped cavity of trust round 3: OpenSCAD's
+   examples/Basics/projection.stl (Debian openscad; 4,160 triangles): a
+   box of 192 around a shell of 3,968, the shell wound inward (a hollow in
+   the box's solid). detail is not used. */
+int scene_projection_box(scene *s, unsigned detail)
+{
+    mio_mesh g;
+    meshfix_outputs out;
+    meshfix_report r;
+    size_t n, t, p, largest = 0;
+    unsigned int *ids;
+    double *area;
+    int made = scene_load_closed(&g, "openscad", "openscad__examples__Basics__projection.stl");
+    (void)detail;
+    if (made != 1)
+        return made;
+    n = g.index_count / 3;
+    ids = (unsigned int *)malloc(n * sizeof(unsigned int) + 4);
+    area = (double *)calloc(n + 1, sizeof(double));
+    memset(&out, 0, sizeof(out));
+    out.patch_ids = ids;
+    if (ids == NULL || area == NULL ||
+        meshfix_inspect(g.indices, g.index_count, g.positions, g.vertex_count, 12, NULL, &r, &out) != MESHFIX_OK) {
+        free(ids), free(area), mio_free(&g);
+        return 0;
+    }
+    for (t = 0; t < n; ++t)
+        area[ids[t] < n ? ids[t] : n] += scene_triangle_area(&g, t);
+    for (p = 1; p < r.mesh.patches; ++p)
+        largest = area[p] > area[largest] ? p : largest;
+    for (t = 0; t < n; ++t) /* every shell but the box: inward */
+        if (ids[t] != largest) {
+            unsigned int x = g.indices[3 * t + 1];
+            g.indices[3 * t + 1] = g.indices[3 * t + 2], g.indices[3 * t + 2] = x;
+        }
+    free(ids);
+    free(area);
+    scene_init(s);
+    return scene_done(s, scene_add(s, &g, 1, "projection.stl: a box, its shell inward", 0));
+}
+
+/* The gapped buildings of trust round 3: OpenFOAM's windAroundBuildings
+   constant/triSurface/buildings.obj (Debian openfoam-examples; 26 closed
+   buildings, 400,020 triangles); detail is not used. */
+int scene_buildings(scene *s, unsigned detail)
+{
+    mio_mesh g;
+    int made = scene_load_closed(&g, "openfoam-examples",
+                                 "doc__openfoam-examples__examples__incompressible__simpleFoam__windAroundBuildings__"
+                                 "constant__triSurface__buildings.obj");
+    (void)detail;
+    if (made != 1)
+        return made;
+    scene_init(s);
+    return scene_done(s, scene_add(s, &g, 1, "buildings", 0));
+}
+
 int scene_spider(scene *s, unsigned detail)
 {
     char path[512], error[256];
@@ -713,6 +807,9 @@ static const scene_info SCENES[] = {
     {"cavity_box", scene_cavity_box, 20, 150, "box 3 wide around a hollow r 1 (wound inward)"},
     {"crossing", scene_crossing, 30, 140, "a sphere, a box and a torus through each other, each outward"},
     {"cad_part", scene_cad_part, 20, 110, "machined block: two through-holes, a pocket, a slot (genus 2)"},
+    {"cavity_coarse", scene_cavity_coarse, 40, 160, "box of 108 triangles around a fine hollow r 0.5 (wound inward)"},
+    {"projection_box", scene_projection_box, 0, 0, "corpus: OpenSCAD's projection.stl, its shell wound inward in its box"},
+    {"buildings", scene_buildings, 0, 0, "corpus: OpenFOAM's buildings.obj, 26 closed buildings, 400k triangles"},
 };
 
 size_t scene_count(void)

@@ -607,19 +607,30 @@ static void test_min_confidence(void)
 
 /* The trust suite's families, cut the way real exports are (tests/scenes.h,
    scene_cut_as_exported): many closed buildings that touch, a solid with
-   a cavity, shells through each other, a machined part; 16 and 256
+   a cavity (also a coarse box around a fine hollow, and OpenSCAD's
+   projection.stl from the corpus: the gapped cavity of trust round 3,
+   4.6% right before long seams found their partners), shells through
+   each other, a machined part; 16 and 256
    patches, seams exact and jittered (gaps and overlaps). As cut nothing
    flips; corrupted (half the patches reversed, then 2% of the triangles)
    every triangle comes back. */
 static void test_cut_families(void)
 {
-    static const char *names[] = {"city", "cavity_box", "crossing", "cad_part"};
+    static const char *names[] = {"city", "cavity_box", "cavity_coarse", "crossing", "cad_part", "projection_box"};
     static const unsigned ks[] = {16, 256};
     static const scene_seams seams[] = {SCENE_SEAMS_EXACT, SCENE_SEAMS_JITTER};
     size_t i, k, j, t;
     for (i = 0; i < sizeof(names) / sizeof(names[0]); ++i) {
         scene base;
-        CHECK(scene_build(&base, names[i], SCENE_SMALL) == 1);
+        int built = scene_build(&base, names[i], SCENE_SMALL);
+        if (built < 0) { /* a corpus file (tests/corpus/fetch.sh): make test fetches it */
+            printf("SKIP %s cut as exported: not in the corpus (%s; tests/corpus/fetch.sh)\n", names[i],
+                   scene_corpus_dir());
+            continue;
+        }
+        CHECK(built == 1);
+        if (built != 1)
+            continue;
         for (k = 0; k < 2; ++k)
             for (j = 0; j < 2; ++j) {
                 scene cut;

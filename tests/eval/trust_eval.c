@@ -56,7 +56,8 @@
 #define MAX_PICKS 32
 #define EVIDENCE_KINDS 6
 
-static const char *const DEFAULT_SCENES[] = {"city", "cavity_box", "crossing", "cad_part", "spider"};
+static const char *const DEFAULT_SCENES[] = {"city",   "cavity_box",     "cavity_coarse", "crossing",
+                                              "cad_part", "spider", "projection_box", "buildings"};
 static const char *const SEAMS[] = {"exact", "gap", "jitter"};
 static const char *const EVIDENCE_NAMES[EVIDENCE_KINDS] = {"kept", "volume", "parity", "visibility", "normals", "policy"};
 
