@@ -86,6 +86,8 @@
        meshfix_weld          merge vertices closer than a tolerance (soups, CAD)
        meshfix_scratch_size  bytes of scratch memory a call needs at most
        meshfix_result_string, meshfix_verdict_string, meshfix_policy_string, meshfix_policy_from_string
+       meshfix_policy_info   what a policy does and needs; meshfix_doubtful_below,
+                             meshfix_verdict_worst: the report's rules, for callers
 
    ALGORITHM (orient, inspect and check share it; sections of the
    implementation below are in this order)
@@ -225,20 +227,40 @@ typedef enum meshfix_result {
 } meshfix_result;
 #undef MESHFIX__RESULT_ENUM
 
-/* Which way each consistently wound patch ends up facing. */
+/* Which way each consistently wound patch ends up facing, from one list:
+   the enum, the name (meshfix_policy_string, the tool's --policy), a line
+   for help texts and menus, and what the policy needs (meshfix_policy_info:
+   positions, the caller's normals, the SDF callback, the up axis; whether
+   it casts rays). */
+#define MESHFIX_POLICY_LIST(X) \
+    X(MESHFIX_POLICY_AUTO, "auto", "the evidence decides: closed shells out (cavities in), open parts by the " \
+      "shells around them, their own crossings and escaping rays, the caller's normals when given; no evidence, " \
+      "no flip (majority without positions)", 0, 0, 0, 0, 1) \
+    X(MESHFIX_POLICY_SEED, "seed", "each patch's lowest triangle keeps its winding (the plain flood fill)", 0, 0, 0, 0, 0) \
+    X(MESHFIX_POLICY_MAJORITY, "majority", "each patch turns to the side that flips less area (or fewer triangles)", 0, 0, 0, 0, 0) \
+    X(MESHFIX_POLICY_OUTWARD, "outward", "auto with the open parts by majority", 1, 0, 0, 0, 1) \
+    X(MESHFIX_POLICY_SDF, "sdf", "along the gradient of options.sdf.distance", 1, 0, 1, 0, 0) \
+    X(MESHFIX_POLICY_VISIBILITY, "visibility", "Borodin et al.: boundary coherence, ray-sampled visibility, greedy merge", 1, 0, 0, 0, 1) \
+    X(MESHFIX_POLICY_UP, "up", "each patch faces the side its normal leans to along the up axis (options.up): terrain, floors", 1, 0, 0, 1, 0) \
+    X(MESHFIX_POLICY_NORMALS, "normals", "each patch faces the way the caller's normals say", 1, 1, 0, 0, 0)
+
+#define MESHFIX__POLICY_ENUM(name, text, line, positions, normals, distance, up, rays) name,
 typedef enum meshfix_policy {
-    MESHFIX_POLICY_AUTO = 0,   /* the evidence decides: closed shells out (cavities in), open parts by the
-                                  shells around them, their own crossings and escaping rays, the caller's
-                                  normals when given; no evidence, no flip. MAJORITY without positions */
-    MESHFIX_POLICY_SEED,       /* the patch's lowest triangle keeps its winding (the plain flood fill) */
-    MESHFIX_POLICY_MAJORITY,   /* the side that flips less area (or fewer triangles) */
-    MESHFIX_POLICY_OUTWARD,    /* AUTO without the evidence for open parts: those by MAJORITY */
-    MESHFIX_POLICY_SDF,        /* along the gradient of options.sdf.distance */
-    MESHFIX_POLICY_VISIBILITY, /* Borodin et al.: boundary coherence, ray-sampled visibility, greedy merge */
-    MESHFIX_POLICY_UP,         /* each patch faces the side its normal leans to along options.up */
-    MESHFIX_POLICY_NORMALS,    /* each patch faces the way options.evidence's normals say */
+    MESHFIX_POLICY_LIST(MESHFIX__POLICY_ENUM)
     MESHFIX_POLICY_COUNT
 } meshfix_policy;
+#undef MESHFIX__POLICY_ENUM
+
+/* A policy as meshfix_policy_info describes it. */
+typedef struct meshfix_policy_facts {
+    const char *name;        /* "auto", ...: meshfix_policy_string's */
+    const char *description; /* one line in plain words */
+    int needs_positions;     /* MESHFIX_ERROR_POSITIONS_REQUIRED without them */
+    int needs_normals;       /* MESHFIX_ERROR_NORMALS_REQUIRED without evidence.*_normals */
+    int needs_distance;      /* calls options.sdf.distance: a function, so not for a file alone */
+    int reads_up;            /* reads options.up */
+    int casts_rays;          /* builds trees and casts rays (options.visibility's budget); AUTO with positions */
+} meshfix_policy_facts;
 
 /* Which corners are one vertex for the edge map. */
 typedef enum meshfix_topology {
@@ -375,15 +397,23 @@ typedef enum meshfix_evidence {
     MESHFIX_EVIDENCE_POLICY      /* the rule of a policy that looks at nothing else (seed, majority, up, SDF) */
 } meshfix_evidence;
 
-/* What happened, in one word (meshfix_summary says it in a line). */
+/* What happened, in one word (meshfix_summary says it in a line), from
+   one list: the enum, its word (meshfix_verdict_string) and its rank for
+   meshfix_verdict_worst (how much a caller is told to look). */
+#define MESHFIX_VERDICT_LIST(X) \
+    X(MESHFIX_VERDICT_CLEAN, "clean", 0)                   /* consistent, facing the policy's way: nothing flipped */ \
+    X(MESHFIX_VERDICT_REPAIRED, "repaired", 1)             /* triangles flipped, every verdict confident */ \
+    X(MESHFIX_VERDICT_DOUBTFUL, "doubtful", 4)             /* some patches' verdicts are doubtful (flipped or not) */ \
+    X(MESHFIX_VERDICT_NOT_ORIENTABLE, "not orientable", 5) /* a Moebius or Klein part: some edges stay inconsistent */ \
+    X(MESHFIX_VERDICT_INCONSISTENT, "inconsistent", 3)     /* inspect: inconsistent winding found */ \
+    X(MESHFIX_VERDICT_INSIDE_OUT, "inside out", 2)         /* inspect: consistent, but closed patches face inward */
+
+#define MESHFIX__VERDICT_ENUM(name, text, rank) name,
 typedef enum meshfix_verdict {
-    MESHFIX_VERDICT_CLEAN = 0,      /* consistent, facing the policy's way: nothing flipped */
-    MESHFIX_VERDICT_REPAIRED,       /* triangles flipped, every verdict confident */
-    MESHFIX_VERDICT_DOUBTFUL,       /* some patches' verdicts are doubtful (flipped or not) */
-    MESHFIX_VERDICT_NOT_ORIENTABLE, /* a Moebius or Klein part: some edges stay inconsistent */
-    MESHFIX_VERDICT_INCONSISTENT,   /* inspect: inconsistent winding found */
-    MESHFIX_VERDICT_INSIDE_OUT      /* inspect: consistent, but closed patches face inward */
+    MESHFIX_VERDICT_LIST(MESHFIX__VERDICT_ENUM)
+    MESHFIX_VERDICT_COUNT
 } meshfix_verdict;
+#undef MESHFIX__VERDICT_ENUM
 
 /* What the mesh is (orient: as returned; inspect: as given). Topology is
    counted on vertices as options.topology joins them. */
@@ -532,6 +562,19 @@ MESHFIX_API const char *meshfix_verdict_string(meshfix_verdict verdict);
    none): the names the command-line tool and the bindings take. */
 MESHFIX_API const char *meshfix_policy_string(meshfix_policy policy);
 MESHFIX_API meshfix_policy meshfix_policy_from_string(const char *name);
+/* What a policy is and needs (static; NULL out of range): help texts,
+   menus and the bindings' option tables read it. */
+MESHFIX_API const meshfix_policy_facts *meshfix_policy_info(meshfix_policy policy);
+/* The confidence below which a patch's verdict is doubtful, as the report
+   counts it (options NULL: the defaults): under AUTO 0.9 (its confidence
+   is a probability), under the others 0.5 (a margin), or
+   options->evidence.min_confidence where that is higher. AUTO without
+   positions runs as MAJORITY: ask for MAJORITY then. */
+MESHFIX_API float meshfix_doubtful_below(const meshfix_options *options, meshfix_policy policy);
+/* Of two verdicts, the one that asks more of the caller's attention
+   (clean < repaired < inside out < inconsistent < doubtful < not
+   orientable): the verdict of several meshes reported together. */
+MESHFIX_API meshfix_verdict meshfix_verdict_worst(meshfix_verdict a, meshfix_verdict b);
 
 #ifdef __cplusplus
 }
@@ -7378,17 +7421,12 @@ MESHFIX__PRIVATE void meshfix__debug_check_orientation(const meshfix__mesh *m)
 /* ===== >>pipeline ===== */
 
 /* What each policy needs from the caller, and whether it decides by units,
-   trees and rays: the pipeline asks this table and nothing else. */
-typedef struct meshfix__policy_traits {
-    const char *name;
-    unsigned char positions; /* refused without positions (AUTO becomes MAJORITY instead) */
-    unsigned char normals;   /* refused without the caller's normals */
-    unsigned char geometry;  /* units, coherence, volume and rays */
-} meshfix__policy_traits;
-
-static const meshfix__policy_traits meshfix__policies[MESHFIX_POLICY_COUNT] = {
-    {"auto", 0, 0, 1},       {"seed", 0, 0, 0}, {"majority", 0, 0, 0}, {"outward", 1, 0, 1},
-    {"sdf", 1, 0, 0},        {"visibility", 1, 0, 1}, {"up", 1, 0, 0}, {"normals", 1, 1, 0}};
+   trees and rays (the public list): the pipeline asks this table and
+   nothing else. */
+#define MESHFIX__POLICY_FACTS(name, text, line, positions, normals, distance, up, rays) \
+    {text, line, positions, normals, distance, up, rays},
+static const meshfix_policy_facts meshfix__policies[MESHFIX_POLICY_COUNT] = {MESHFIX_POLICY_LIST(MESHFIX__POLICY_FACTS)};
+#undef MESHFIX__POLICY_FACTS
 
 MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, const meshfix__plan *plan,
                                     const meshfix__input *in, size_t vertex_range, const meshfix_options *options,
@@ -7420,7 +7458,7 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
    volume decides. */
 MESHFIX__PRIVATE int meshfix__needs_geometry(const meshfix__mesh *m, int policy)
 {
-    if (policy < 0 || !meshfix__policies[policy].geometry)
+    if (policy < 0 || !meshfix__policies[policy].casts_rays)
         return 0;
     if (policy == MESHFIX_POLICY_VISIBILITY)
         return m->patch_count != 0;
@@ -7681,9 +7719,9 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call, const meshfix_
         return result;
     if (policy == MESHFIX_POLICY_AUTO && in->positions == NULL)
         policy = MESHFIX_POLICY_MAJORITY;
-    if (policy >= 0 && meshfix__policies[policy].positions && in->positions == NULL)
+    if (policy >= 0 && meshfix__policies[policy].needs_positions && in->positions == NULL)
         return MESHFIX_ERROR_POSITIONS_REQUIRED;
-    if (policy >= 0 && meshfix__policies[policy].normals && options.evidence.triangle_normals == NULL &&
+    if (policy >= 0 && meshfix__policies[policy].needs_normals && options.evidence.triangle_normals == NULL &&
         options.evidence.vertex_normals == NULL)
         return MESHFIX_ERROR_NORMALS_REQUIRED;
     if (!meshfix__options_valid(&options, policy))
@@ -8281,10 +8319,40 @@ MESHFIX_API size_t meshfix_summary(const meshfix_report *r, char *buffer, size_t
 
 MESHFIX_API const char *meshfix_verdict_string(meshfix_verdict verdict)
 {
-    static const char *const texts[] = {"clean", "repaired", "doubtful", "not orientable", "inconsistent",
-                                        "inside out", "unknown verdict"};
+#define MESHFIX__VERDICT_TEXT(name, text, rank) text,
+    static const char *const texts[] = {MESHFIX_VERDICT_LIST(MESHFIX__VERDICT_TEXT) "unknown verdict"};
+#undef MESHFIX__VERDICT_TEXT
     unsigned int i = (unsigned int)verdict;
-    return texts[i < 6u ? i : 6u];
+    return texts[i < (unsigned int)MESHFIX_VERDICT_COUNT ? i : (unsigned int)MESHFIX_VERDICT_COUNT];
+}
+
+MESHFIX_API meshfix_verdict meshfix_verdict_worst(meshfix_verdict a, meshfix_verdict b)
+{
+#define MESHFIX__VERDICT_RANK(name, text, rank) rank,
+    static const unsigned char ranks[] = {MESHFIX_VERDICT_LIST(MESHFIX__VERDICT_RANK) 0};
+#undef MESHFIX__VERDICT_RANK
+    unsigned int i = (unsigned int)a, k = (unsigned int)b;
+    if (k >= (unsigned int)MESHFIX_VERDICT_COUNT)
+        return a;
+    if (i >= (unsigned int)MESHFIX_VERDICT_COUNT)
+        return b;
+    return ranks[k] > ranks[i] ? b : a;
+}
+
+MESHFIX_API const meshfix_policy_facts *meshfix_policy_info(meshfix_policy policy)
+{
+    unsigned int i = (unsigned int)policy;
+    return i < (unsigned int)MESHFIX_POLICY_COUNT ? &meshfix__policies[i] : NULL;
+}
+
+MESHFIX_API float meshfix_doubtful_below(const meshfix_options *options, meshfix_policy policy)
+{
+    meshfix_options defaults;
+    if (options == NULL) {
+        MESHFIX_MEMSET(&defaults, 0, sizeof(defaults));
+        options = &defaults;
+    }
+    return (float)meshfix__doubtful_below(options, (int)policy);
 }
 
 MESHFIX_API const char *meshfix_policy_string(meshfix_policy policy)

@@ -24,22 +24,9 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty
 
 from . import meshfix, repair
 
-_POLICY_TEXT = {
-    "auto": "Weigh the geometry's evidence: closed parts face out by volume, open parts by the shells "
-            "around them, ray parity and visibility, and the custom normals; a face without evidence "
-            "keeps its side",
-    "seed": "Plain flood fill: each connected patch follows its first face",
-    "majority": "Each patch turns to the side that flips less area",
-    "outward": "Auto, with open parts turned by majority",
-    "visibility": "Ray-sampled visibility with coherence merging (Borodin, Zachmann, Klein)",
-    "up": "Each patch faces up (+Z): terrain, floors",
-    "normals": "Follow the custom split normals only",
-}
-
-
 def _policy_items():
-    return [(name, name.capitalize(), _POLICY_TEXT.get(name, "meshfix policy %s" % name))
-            for name in repair.policy_names()]
+    """The menu: each policy a file can use, with the header's line about it (meshfix_policy_info)."""
+    return [(name, name.capitalize(), repair.policy_description(name)) for name in repair.policy_names()]
 
 
 def _threads():

@@ -17,8 +17,14 @@ NO_PATCH = 0xFFFFFFFF
 
 
 def policy_names():
-    """The library's policies but sdf (a mesh has no distance function), in its order."""
-    return [p.name.lower() for p in meshfix.Policy if p.name != "SDF"]
+    """The library's policies but those that call a distance function (a mesh has none), in its order."""
+    return [p.name.lower() for p in meshfix.Policy if not meshfix.policy_info(p).needs_distance]
+
+
+def policy_description(name):
+    """The header's line about a policy, as a sentence for a tooltip."""
+    text = meshfix.policy_info(name).description
+    return text[:1].upper() + text[1:]
 
 
 class Decision:
@@ -110,6 +116,7 @@ def decide(me, scope=None, policy="auto", weld_tolerance=0.0, min_confidence=0.0
     if len(indices) == 0:
         return d
     o = options(policy, weld_tolerance, min_confidence)
+    limit = meshfix.doubtful_below(**o)  # the report's bar: 0.9 under auto, else 0.5, or min_confidence
     if normals is not None:
         o["evidence"]["vertex_normals"] = normals
     if threads:
@@ -121,8 +128,7 @@ def decide(me, scope=None, policy="auto", weld_tolerance=0.0, min_confidence=0.0
     kept = np.bincount(tri_polygon[decided & ~out.flipped], minlength=polygon_count)
     d.flip = turned > kept
     d.split = int(np.count_nonzero((turned > 0) & (kept > 0)))
-    # doubtful: a triangle of a patch whose verdict confidence is below 0.5 (or min_confidence)
-    limit = max(0.5, float(min_confidence))
+    # doubtful: a triangle of a patch whose verdict confidence is below the library's bar
     confidence = np.append(out.patch_confidence, 1.0)
     patch = np.where(decided, out.patch_ids, len(confidence) - 1).astype(np.int64)
     doubtful_triangle = confidence[patch] < limit

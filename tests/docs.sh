@@ -101,6 +101,23 @@ else
     sed 's/^/    /' "$out/options.log" | head -20
     failed=1
 fi
+# The policies the tool takes (its error for an unknown one lists them, from
+# meshfix_policy_info) are README.md's --policy row, in the header's order.
+policies_documented() {
+    local tool readme
+    tool=$(build/meshfix --policy no-such-policy in.obj out.obj 2>&1 | sed -n 's/.*(\(.*\)).*/\1/p' | tr -d ' ')
+    readme=$(sed -n 's/^| `--policy P` | \(.*\) |$/\1/p' README.md | grep -oE '`[a-z]+`' | tr -d '`' | paste -sd, -)
+    [ -n "$tool" ] && [ "$tool" = "$readme" ] && echo "$tool" || { echo "the tool: $tool; README.md: $readme"; return 1; }
+}
+if policies_documented >"$out/policies.log" 2>&1; then
+    npass=$((npass + 1))
+    echo "ok   docs: README.md's --policy row names the tool's policies, the header's ($(cat "$out/policies.log"))"
+else
+    nfail=$((nfail + 1))
+    echo "FAIL docs: README.md's --policy row and the tool's policies disagree"
+    sed 's/^/    /' "$out/policies.log"
+    failed=1
+fi
 if [ "$count" -lt 8 ]; then
     nfail=$((nfail + 1))
     echo "FAIL docs: only $count snippets found (README.md has at least 7, the header 1)"

@@ -943,6 +943,121 @@ static void test_hostile_files(void)
     }
 }
 
+/* ---- the header's account of itself ---- */
+
+static float distance_to_unit_sphere(const float position[3], void *user)
+{
+    (void)user;
+    return (float)sqrt((double)(position[0] * position[0] + position[1] * position[1] + position[2] * position[2])) -
+           1.0f;
+}
+
+/* meshfix_policy_info says what each policy needs and does, and each call
+   behaves as it says: refused without positions, normals or a distance
+   function exactly when it needs them; rays cast only by those that cast
+   them (two open sheets apart, half of one reversed: AUTO and VISIBILITY
+   look). */
+static void test_policy_info(void)
+{
+    mio_mesh g, other;
+    meshfix_report r;
+    meshfix_options o;
+    float *normals;
+    size_t t;
+    int p;
+    CHECK(gen_grid(&g, 12, 12));
+    CHECK(gen_grid(&other, 12, 12));
+    for (t = 0; t < other.vertex_count; ++t)
+        other.positions[3 * t + 2] += 5.0f;
+    CHECK(gen_append(&g, &other));
+    for (t = 0; t < other.index_count / 3 / 2; ++t) {
+        unsigned int *tri = g.indices + g.index_count - 3 * (t + 1), keep = tri[1];
+        tri[1] = tri[2], tri[2] = keep;
+    }
+    normals = (float *)calloc(g.index_count, sizeof(float));
+    CHECK(meshfix_policy_info(MESHFIX_POLICY_COUNT) == NULL);
+    CHECK(meshfix_policy_info((meshfix_policy)-1) == NULL);
+    for (p = 0; p < (int)MESHFIX_POLICY_COUNT; ++p) {
+        const meshfix_policy_facts *f = meshfix_policy_info((meshfix_policy)p);
+        meshfix_result without_positions, without_normals, without_distance;
+        CHECK(f != NULL && strcmp(f->name, meshfix_policy_string((meshfix_policy)p)) == 0);
+        CHECK(f->description != NULL && strlen(f->description) > 10);
+        memset(&o, 0, sizeof(o));
+        o.policy = (meshfix_policy)p;
+        o.sdf.distance = distance_to_unit_sphere;
+        o.evidence.triangle_normals = normals;
+        without_positions = meshfix_orient(NULL, g.indices, g.index_count, NULL, g.vertex_count, 0, &o, &r, NULL);
+        CHECK_EQ(without_positions == MESHFIX_ERROR_POSITIONS_REQUIRED, f->needs_positions);
+        o.evidence.triangle_normals = NULL;
+        without_normals = meshfix_orient(NULL, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r,
+                                         NULL);
+        CHECK_EQ(without_normals == MESHFIX_ERROR_NORMALS_REQUIRED, f->needs_normals);
+        o.evidence.triangle_normals = normals;
+        o.sdf.distance = NULL;
+        without_distance = meshfix_orient(NULL, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r,
+                                          NULL);
+        CHECK_EQ(without_distance == MESHFIX_ERROR_INVALID_ARGUMENT, f->needs_distance);
+        o.sdf.distance = distance_to_unit_sphere;
+        CHECK_EQ(meshfix_orient(NULL, g.indices, g.index_count, g.positions, g.vertex_count, 12, &o, &r, NULL),
+                 MESHFIX_OK);
+        CHECK_EQ(r.evidence.rays_cast > 0, f->casts_rays && p != MESHFIX_POLICY_OUTWARD);
+        if (f->casts_rays == 0)
+            CHECK_EQ(r.evidence.rays_cast, 0);
+    }
+    CHECK(meshfix_policy_info(MESHFIX_POLICY_UP)->reads_up && !meshfix_policy_info(MESHFIX_POLICY_AUTO)->reads_up);
+    free(normals);
+    mio_free(&other);
+    mio_free(&g);
+}
+
+/* meshfix_doubtful_below is the bar the report counts by: a patch just
+   under it is doubtful, one at it is not. */
+static void test_doubtful_below(void)
+{
+    meshfix_options o;
+    meshfix_report r;
+    meshfix_outputs outputs;
+    float confidence[8];
+    int p;
+    CHECK(fabs(meshfix_doubtful_below(NULL, MESHFIX_POLICY_AUTO) - 0.9f) < 1e-6f);
+    for (p = 1; p < (int)MESHFIX_POLICY_COUNT; ++p)
+        CHECK(meshfix_doubtful_below(NULL, (meshfix_policy)p) == 0.5f);
+    memset(&o, 0, sizeof(o));
+    memset(&outputs, 0, sizeof(outputs));
+    outputs.patch_confidence = confidence;
+    outputs.patch_confidence_capacity = 8;
+    CHECK_EQ(meshfix_orient(NULL, tetra_indices, 12, tetra_positions, 4, 12, &o, &r, &outputs), MESHFIX_OK);
+    CHECK_EQ(r.mesh.patches, 1);
+    CHECK(confidence[0] >= meshfix_doubtful_below(&o, MESHFIX_POLICY_AUTO));
+    CHECK_EQ(r.patches_doubtful, 0);
+    o.evidence.min_confidence = confidence[0];
+    CHECK(meshfix_doubtful_below(&o, MESHFIX_POLICY_AUTO) == confidence[0]);
+    CHECK_EQ(meshfix_orient(NULL, tetra_indices, 12, tetra_positions, 4, 12, &o, &r, &outputs), MESHFIX_OK);
+    CHECK_EQ(r.patches_doubtful, 0);
+    o.evidence.min_confidence = nextafterf(confidence[0], 2.0f);
+    CHECK_EQ(meshfix_orient(NULL, tetra_indices, 12, tetra_positions, 4, 12, &o, &r, &outputs), MESHFIX_OK);
+    CHECK_EQ(r.patches_doubtful, 1);
+    CHECK_EQ(r.verdict, MESHFIX_VERDICT_DOUBTFUL);
+}
+
+/* meshfix_verdict_worst: clean says least, not orientable most; the list's
+   words are meshfix_verdict_string's. */
+static void test_verdict_worst(void)
+{
+    static const meshfix_verdict ascending[] = {MESHFIX_VERDICT_CLEAN, MESHFIX_VERDICT_REPAIRED,
+                                                MESHFIX_VERDICT_INSIDE_OUT, MESHFIX_VERDICT_INCONSISTENT,
+                                                MESHFIX_VERDICT_DOUBTFUL, MESHFIX_VERDICT_NOT_ORIENTABLE};
+    int i, k;
+    CHECK_EQ((int)(sizeof(ascending) / sizeof(ascending[0])), (int)MESHFIX_VERDICT_COUNT);
+    for (i = 0; i < (int)MESHFIX_VERDICT_COUNT; ++i)
+        for (k = 0; k < (int)MESHFIX_VERDICT_COUNT; ++k)
+            CHECK_EQ(meshfix_verdict_worst(ascending[i], ascending[k]), ascending[i > k ? i : k]);
+    CHECK_EQ(meshfix_verdict_worst(MESHFIX_VERDICT_REPAIRED, MESHFIX_VERDICT_COUNT), MESHFIX_VERDICT_REPAIRED);
+    CHECK_EQ(meshfix_verdict_worst((meshfix_verdict)99, MESHFIX_VERDICT_CLEAN), MESHFIX_VERDICT_CLEAN);
+    CHECK(strcmp(meshfix_verdict_string(MESHFIX_VERDICT_NOT_ORIENTABLE), "not orientable") == 0);
+    CHECK(strcmp(meshfix_verdict_string(MESHFIX_VERDICT_COUNT), "unknown verdict") == 0);
+}
+
 /* ---- runner ---- */
 
 static const test_case tests[] = {
@@ -966,6 +1081,9 @@ static const test_case tests[] = {
     {"property: random soups", test_property_random_soups},
     {"real models: scrambled and repaired", test_real_models},
     {"hostile and truncated files", test_hostile_files},
+    {"policy info: what each policy needs and does", test_policy_info},
+    {"doubtful below: the report's bar", test_doubtful_below},
+    {"verdict worst: the order of verdicts", test_verdict_worst},
 };
 
 int main(int argc, char **argv)

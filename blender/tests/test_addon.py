@@ -129,10 +129,14 @@ def install(zip_path):
 
 def policies_are_the_librarys():
     import meshfix_blender
-    items = bpy.ops.mesh.meshfix_recalculate_outside.get_rna_type().properties["policy"].enum_items.keys()
+    enum_items = bpy.ops.mesh.meshfix_recalculate_outside.get_rna_type().properties["policy"].enum_items
+    items = enum_items.keys()
     names = [p.name.lower() for p in meshfix_blender.meshfix.Policy if p.name != "SDF"]
     assert items == names, "%s != %s" % (items, names)
     assert "sdf" not in items and "auto" in items
+    for name in items:  # the tooltips are the header's lines (meshfix_policy_info)
+        text = meshfix_blender.meshfix.policy_info(name).description
+        assert enum_items[name].description.lower() == text.lower(), (name, enum_items[name].description, text)
     op = bpy.types.MESH_OT_meshfix_recalculate_outside
     assert op.bl_options == {'REGISTER', 'UNDO'}, op.bl_options
 

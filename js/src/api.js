@@ -6,7 +6,6 @@
 // structs' fields by which this file reads and writes them.
 
 const TOPOLOGIES = ['positions', 'indices', 'weld'];
-const VERDICTS = ['clean', 'repaired', 'doubtful', 'not-orientable', 'inconsistent', 'inside-out'];
 const REQUIREMENTS = { consistent: 1, closed: 2, manifold: 4, outward: 8, 'no-degenerate': 16, solid: 31 };
 const VISIBILITY_FLAGS = { 'coherence-only': 1, 'visibility-only': 2 };
 const AXES = { x: [1, 0, 0], y: [0, 1, 0], z: [0, 0, 1], '-x': [-1, 0, 0], '-y': [0, -1, 0], '-z': [0, 0, -1] };
@@ -93,6 +92,10 @@ function load(e) {
         layout,
         results,
         policies: Array.from({ length: e.mfjs_policy_count() }, (_, i) => readString(e, e.meshfix_policy_string(i))),
+        callsC: Array.from({ length: e.mfjs_policy_count() }, (_, i) => e.mfjs_policy_needs_distance(i) !== 0),
+        // meshfix_verdict_string's words, hyphenated: 'not-orientable'
+        verdicts: Array.from({ length: e.mfjs_verdict_count() },
+                             (_, i) => readString(e, e.meshfix_verdict_string(i)).replace(/ /g, '-')),
         options: new Map(layout.structs.meshfix_options.fields.map((f) => [f.name, f])),
         schemas: { call: optionSchema(layout, CALL_OPTIONS), weld: optionSchema(null, WELD_OPTIONS) },
     };
@@ -263,15 +266,17 @@ function takeName(value, path, names) {
     return i;
 }
 
-// The names the library knows (meshfix_policy_string), less "sdf": it calls a C function for the distance.
+// The names the library knows (meshfix_policy_string), less those that call a C function for the
+// distance (meshfix_policy_info's needs_distance: "sdf").
 function policyNames() {
-    return instance().policies.filter((name) => name !== 'sdf');
+    const { policies, callsC } = instance();
+    return policies.filter((_, i) => !callsC[i]);
 }
 
 function takePolicy(value, path) {
-    if (value === 'sdf')
-        throw optionError(path, '"sdf" calls a C function for the distance; it is not available from JavaScript');
     const policy = typeof value === 'string' && !value.includes('\0') ? policyFromString(value) : wasm.policies.length;
+    if (policy < wasm.policies.length && wasm.callsC[policy])
+        throw optionError(path, `"${value}" calls a C function for the distance; it is not available from JavaScript`);
     if (policy >= wasm.policies.length)
         throw optionError(path, `${show(value)} is not one of ${policyNames().join(', ')}`);
     return policy;
@@ -469,7 +474,7 @@ function requirementBits(requirements) {
 
 function readReport(e, pointer) {
     const report = readStruct(e, 'meshfix_report', pointer);
-    report.verdict = VERDICTS[report.verdict] || String(report.verdict);
+    report.verdict = wasm.verdicts[report.verdict] || String(report.verdict);
     return report;
 }
 

@@ -183,6 +183,13 @@ static const char mfjs_result_names[] = MESHFIX_RESULT_LIST(MFJS_RESULT_NAME);
 
 MFJS_API const char *mfjs_result_codes(void) { return mfjs_result_names; }
 MFJS_API int mfjs_policy_count(void) { return (int)MESHFIX_POLICY_COUNT; }
+MFJS_API int mfjs_verdict_count(void) { return (int)MESHFIX_VERDICT_COUNT; }
+/* Whether a policy calls a C function (the SDF's distance): not for JavaScript. */
+MFJS_API int mfjs_policy_needs_distance(int policy)
+{
+    const meshfix_policy_facts *facts = meshfix_policy_info((meshfix_policy)policy);
+    return facts != NULL && facts->needs_distance;
+}
 MFJS_API int mfjs_version(void) { return MESHFIX_VERSION; }
 MFJS_API void *mfjs_malloc(size_t size) { return malloc(size != 0 ? size : 1); }
 MFJS_API void mfjs_free(void *p) { free(p); }

@@ -420,11 +420,18 @@ await test('result codes: the JavaScript side has every one of meshfix.h\'s MESH
     return problems;
 });
 
-await test('policies: the library\'s names (meshfix_policy_string), each taken; the types and the README list them', () => {
+await test('policies and verdicts: the library\'s names (meshfix_policy_string, meshfix_verdict_string), each policy taken but those that call C; the types and the README list them', () => {
     const problems = [];
-    const names = scope.wasm.policies.filter((name) => name !== 'sdf');
-    if (scope.wasm.policies.length < 8 || !scope.wasm.policies.includes('sdf'))
-        problems.push(`policies ${scope.wasm.policies}`);
+    const names = scope.wasm.policies.filter((_, i) => !scope.wasm.callsC[i]);
+    if (scope.wasm.policies.length < 8 || scope.wasm.policies.filter((_, i) => scope.wasm.callsC[i]).join() !== 'sdf')
+        problems.push(`policies ${scope.wasm.policies}, calling C ${scope.wasm.callsC}`);
+    try {
+        orient(tetraIndices(), tetraPositions, { policy: 'sdf' });
+        problems.push('policy sdf was taken');
+    } catch (error) {
+        if (!/calls a C function/.test(error.message))
+            problems.push(`sdf: ${error.message}`);
+    }
     for (const policy of names)
         try {
             orient(tetraIndices(), tetraPositions, { policy, evidence: { triangleNormals: new Float32Array(12) } });
@@ -435,6 +442,10 @@ await test('policies: the library\'s names (meshfix_policy_string), each taken; 
     const declared = [...types.matchAll(/'([^']+)'/g)].map((m) => m[1]);
     if (declared.join() !== names.join())
         problems.push(`meshfix.d.ts Policy: ${declared}; the library: ${names}`);
+    const verdicts = readFileSync(join(jsDir, 'meshfix.d.ts'), 'utf8').match(/^export type Verdict = (.*);$/m)[1];
+    const verdictsDeclared = [...verdicts.matchAll(/'([^']+)'/g)].map((m) => m[1]);
+    if (verdictsDeclared.join() !== scope.wasm.verdicts.join())
+        problems.push(`meshfix.d.ts Verdict: ${verdictsDeclared}; the library: ${scope.wasm.verdicts}`);
     const readme = readFileSync(join(jsDir, 'README.md'), 'utf8').match(/^\| `policy` \| ([^|]*) \|/m)[1];
     const listed = [...readme.matchAll(/`'([^']+)'`/g)].map((m) => m[1]);
     if (listed.join() !== names.join())

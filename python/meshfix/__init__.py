@@ -49,6 +49,7 @@ MESHFIX_ERROR_INVALID_ARGUMENT and .option naming it. Values the field
 holds (NaN, rays above the library's limit) go to C for it to judge.
 """
 
+import collections
 import ctypes
 import dataclasses
 import enum
@@ -64,7 +65,8 @@ import numpy as np
 
 __all__ = ["orient", "inspect", "check", "weld", "scratch_size", "summary", "Report", "MeshFacts",
            "EvidenceCounts", "Outputs", "Check", "MeshfixError", "Policy", "Topology", "SdfMode", "Verdict", "Evidence",
-           "Requirement", "VISIBILITY_COHERENCE_ONLY", "VISIBILITY_ONLY", "version", "__version__"]
+           "Requirement", "VISIBILITY_COHERENCE_ONLY", "VISIBILITY_ONLY", "PolicyInfo", "policy_info", "doubtful_below",
+           "version", "__version__"]
 
 # ---- the shared library ----
 
@@ -161,12 +163,17 @@ class _CheckFailure(Structure):
                 ("edge", c_uint * 2), ("text", c_char * 200)]
 
 
+class _PolicyFacts(Structure):
+    _fields_ = [("name", c_char_p), ("description", c_char_p), ("needs_positions", c_int),
+                ("needs_normals", c_int), ("needs_distance", c_int), ("reads_up", c_int), ("casts_rays", c_int)]
+
+
 _C_NAMES = {
     _MemoryOptions: "meshfix_memory_options", _EvidenceOptions: "meshfix_evidence_options",
     _VisibilityOptions: "meshfix_visibility_options", _SdfOptions: "meshfix_sdf_options",
     _Options: "meshfix_options", _Component: "meshfix_component", _Outputs: "meshfix_outputs",
     _MeshFacts: "meshfix_mesh_facts", _EvidenceCounts: "meshfix_evidence_counts", _Report: "meshfix_report",
-    _CheckFailure: "meshfix_check_failure",
+    _CheckFailure: "meshfix_check_failure", _PolicyFacts: "meshfix_policy_facts",
 }
 
 
@@ -225,6 +232,9 @@ _verdict_string = _declare("meshfix_verdict_string", c_char_p, [c_int])
 _result_name = _declare("meshfix_python_result_name", c_char_p, [c_int])
 _policy_string = _declare("meshfix_policy_string", c_char_p, [c_int])
 _policy_from_string = _declare("meshfix_policy_from_string", c_int, [c_char_p])
+_policy_info = _declare("meshfix_policy_info", POINTER(_PolicyFacts), [c_int])
+_doubtful_below = _declare("meshfix_doubtful_below", c_float, [POINTER(_Options), c_int])
+_verdict_worst = _declare("meshfix_verdict_worst", c_int, [c_int, c_int])
 
 # ---- enums ----
 
@@ -841,3 +851,28 @@ def scratch_size(index_count, vertex_count, *, index_dtype=np.uint32, position_d
     call = _Call((np.dtype(index_dtype).itemsize, np.dtype(position_dtype).itemsize), (index_count, vertex_count),
                  **options)
     return _scratch_size(index_count, vertex_count, ctypes.byref(call.options))
+
+
+PolicyInfo = collections.namedtuple("PolicyInfo", "name description needs_positions needs_normals needs_distance "
+                                                  "reads_up casts_rays")
+PolicyInfo.__doc__ = "What a policy is and needs (meshfix_policy_info)."
+
+
+def policy_info(policy):
+    """The header's account of a policy (a Policy, its int or its name): its name, a line about it,
+    and what it needs (positions, normals, an SDF distance function, the up axis) or does (rays)."""
+    pointer = _policy_info(_c_value(c_int, _enum(Policy, policy, "policy"), "policy"))
+    if not pointer:
+        raise ValueError("meshfix: unknown policy %r (one of %s)" % (policy, ", ".join(m.name.lower() for m in Policy)))
+    facts = pointer.contents
+    return PolicyInfo(facts.name.decode(), facts.description.decode(), bool(facts.needs_positions),
+                      bool(facts.needs_normals), bool(facts.needs_distance), bool(facts.reads_up),
+                      bool(facts.casts_rays))
+
+
+def doubtful_below(policy="auto", **options):
+    """The confidence below which a patch's verdict is doubtful, as the report counts it
+    (meshfix_doubtful_below): 0.9 under auto, 0.5 under the others, or evidence's min_confidence
+    where that is higher."""
+    call = _Call((4, 4), None, policy=policy, **options)
+    return float(_doubtful_below(ctypes.byref(call.options), int(call.options.policy)))

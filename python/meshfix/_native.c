@@ -141,6 +141,14 @@ static const meshfix_python_line meshfix_python_lines[] = {
     MESHFIX_PY_FIELD(meshfix_check_failure, triangle)
     MESHFIX_PY_FIELD(meshfix_check_failure, edge)
     MESHFIX_PY_FIELD(meshfix_check_failure, text)
+    MESHFIX_PY_STRUCT(meshfix_policy_facts)
+    MESHFIX_PY_FIELD(meshfix_policy_facts, name)
+    MESHFIX_PY_FIELD(meshfix_policy_facts, description)
+    MESHFIX_PY_FIELD(meshfix_policy_facts, needs_positions)
+    MESHFIX_PY_FIELD(meshfix_policy_facts, needs_normals)
+    MESHFIX_PY_FIELD(meshfix_policy_facts, needs_distance)
+    MESHFIX_PY_FIELD(meshfix_policy_facts, reads_up)
+    MESHFIX_PY_FIELD(meshfix_policy_facts, casts_rays)
 };
 
 /* One line per struct ("type - 0 sizeof") and per field ("type field

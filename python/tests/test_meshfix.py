@@ -124,13 +124,59 @@ def test_result_names_are_the_headers():
         assert e.result == code and e.name == name and str(e) == "%s: %s" % (name, text)
 
 
-def test_policy_is_the_headers():
-    """Policy's members are meshfix_policy's, by name and value (MESHFIX_POLICY_COUNT left out)."""
+def header_policies():
+    """MESHFIX_POLICY_LIST as the header writes it: (enum name, name, description, the five flags)."""
     with open(os.path.join(ROOT, "meshfix.h")) as f:
-        body = re.search(r"typedef enum meshfix_policy \{(.*?)\} meshfix_policy;", f.read(), re.S).group(1)
-    names = [n for n in re.findall(r"^\s*MESHFIX_POLICY_(\w+)", body, re.M) if n != "COUNT"]
-    assert [(p.name, p.value) for p in meshfix.Policy] == [(n, i) for i, n in enumerate(names)]
+        body = re.search(r"#define MESHFIX_POLICY_LIST\(X\)(.*?)\n\n", f.read(), re.S).group(1)
+    rows = []
+    for enum_name, name, text, flags in re.findall(
+            r'X\(MESHFIX_POLICY_(\w+), "(\w+)", ((?:"[^"]*"\s*\\?\s*)+), ([01, ]+)\)', body):
+        rows.append((enum_name, name, "".join(re.findall(r'"([^"]*)"', text)),
+                     tuple(bool(int(x)) for x in flags.split(","))))
+    return rows
+
+
+def test_policy_is_the_headers():
+    """Policy's members are meshfix_policy's, by name and value (MESHFIX_POLICY_COUNT left out), and
+    policy_info() says of each what the header's list says."""
+    rows = header_policies()
+    assert len(rows) == 8
+    assert [(p.name, p.value) for p in meshfix.Policy] == [(r[0], i) for i, r in enumerate(rows)]
     assert meshfix.Policy.NORMALS == 7 and isinstance(meshfix.Policy.UP, int)
+    for policy, (_, name, text, flags) in zip(meshfix.Policy, rows):
+        info = meshfix.policy_info(policy)
+        assert info == meshfix.PolicyInfo(name, text, *flags)
+        assert meshfix.policy_info(name) == info == meshfix.policy_info(int(policy))
+    assert meshfix.policy_info("sdf").needs_distance and meshfix.policy_info("up").reads_up
+    with pytest.raises(ValueError, match="unknown policy"):
+        meshfix.policy_info(len(rows))
+
+
+def test_docstring_lists_the_headers_policies():
+    """The module's docstring and python/README.md name every policy the header lists, in its
+    order, and no other."""
+    names = [r[1] for r in header_policies()]
+    listed = re.search(r'policy=(.*?)\(or a Policy', meshfix.__doc__, re.S).group(1)
+    assert re.findall(r'"(\w+)"', listed) == names
+    with open(os.path.join(ROOT, "python", "README.md")) as f:
+        listed = re.search(r"`policy` \((.*?)\)", f.read(), re.S).group(1)
+    assert re.findall(r'"(\w+)"', listed) == names
+
+
+def test_doubtful_below_is_the_reports():
+    """doubtful_below() is the bar the report counts patches doubtful by: 0.9 under auto, 0.5 under
+    the others, min_confidence where higher; a patch just under it is counted, one at it is not."""
+    assert meshfix.doubtful_below() == pytest.approx(0.9)
+    assert meshfix.doubtful_below("majority") == meshfix.doubtful_below("visibility") == 0.5
+    assert meshfix.doubtful_below("seed", evidence=dict(min_confidence=0.75)) == 0.75
+    assert meshfix.doubtful_below("auto", evidence=dict(min_confidence=0.25)) == pytest.approx(0.9)
+    positions = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+    indices = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 3, 2]], np.uint32)
+    _, report, out = meshfix.orient(indices, positions, outputs=True)
+    confidence = float(out.patch_confidence[0])
+    _, below, _ = meshfix.orient(indices, positions, outputs=True,
+                                 evidence=dict(min_confidence=np.nextafter(np.float32(confidence), np.float32(2))))
+    assert report.patches_doubtful == 0 and below.patches_doubtful == 1
 
 
 def test_policy_names_are_the_librarys(tmp_path):
@@ -139,8 +185,8 @@ def test_policy_names_are_the_librarys(tmp_path):
     it has Policy.UPWARD and takes policy="upward", not "up"."""
     with open(os.path.join(ROOT, "meshfix.h")) as f:
         text = f.read()
-    assert text.count('{"up", ') == 1
-    (tmp_path / "meshfix.h").write_text(text.replace('{"up", ', '{"upward", '))
+    assert text.count('MESHFIX_POLICY_UP, "up", ') == 1
+    (tmp_path / "meshfix.h").write_text(text.replace('MESHFIX_POLICY_UP, "up", ', 'MESHFIX_POLICY_UP, "upward", '))
     # build.sh puts CFLAGS' -I before the repository's: the changed header wins
     subprocess.run(["sh", os.path.join(ROOT, "python", "build.sh"), str(tmp_path / "module")], check=True,
                    capture_output=True, env=dict(os.environ, CFLAGS="-O0 -I%s" % tmp_path))

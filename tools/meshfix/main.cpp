@@ -36,7 +36,8 @@ const char *const usage_text =
     "Formats: .obj .off .stl .ply .gltf .glb. The output keeps everything the repair does not\n"
     "change; another format than the input's (OBJ, OFF, STL, PLY) gets positions and faces only.\n"
     "\n"
-    "  --policy P        auto (default), seed, majority, outward, visibility, up, normals\n"
+    "  --policy P        how each patch turns (default auto); the policies:\n"
+    "%POLICIES%"
     "  --up AXIS         x, y, z, -x, -y or -z: the axis of --policy up (default z) and the\n"
     "                    picture's up (default: glTF y; STL, PLY, OFF z; OBJ y unless the mesh\n"
     "                    stands on z = 0 or has its flat base at its lowest z)\n"
@@ -77,11 +78,18 @@ int fail_usage(const std::string &message)
     return 1;
 }
 
-/* The library's policy names, but SDF (a file has no distance function). */
+/* The library's policies a file can use: all but those that call a
+   distance function (a file has none). */
+bool file_policy(meshfix_policy policy)
+{
+    const meshfix_policy_facts *facts = meshfix_policy_info(policy);
+    return facts != nullptr && !facts->needs_distance;
+}
+
 bool parse_policy(const std::string &name, Settings &s)
 {
     meshfix_policy policy = meshfix_policy_from_string(name.c_str());
-    if (policy == MESHFIX_POLICY_COUNT || policy == MESHFIX_POLICY_SDF)
+    if (!file_policy(policy))
         return false;
     s.policy = policy;
     s.policy_name = name;
@@ -92,9 +100,44 @@ std::string policy_names()
 {
     std::string names;
     for (int p = 0; p < (int)MESHFIX_POLICY_COUNT; ++p)
-        if (p != (int)MESHFIX_POLICY_SDF)
+        if (file_policy((meshfix_policy)p))
             names += (names.empty() ? "" : ", ") + std::string(meshfix_policy_string((meshfix_policy)p));
     return names;
+}
+
+/* The help text, each policy with the header's line about it, wrapped to
+   fit 92 columns below its name. */
+std::string usage()
+{
+    const int indent = 32, width = 92;
+    std::string policies;
+    for (int p = 0; p < (int)MESHFIX_POLICY_COUNT; ++p) {
+        if (!file_policy((meshfix_policy)p))
+            continue;
+        const meshfix_policy_facts *facts = meshfix_policy_info((meshfix_policy)p);
+        std::string line = std::string(20, ' ') + facts->name;
+        line.resize(indent, ' ');
+        std::string word, text = std::string(facts->description) + " ";
+        size_t column = line.size();
+        for (char c : text) {
+            if (c != ' ') {
+                word += c;
+                continue;
+            }
+            if (column > (size_t)indent && column + 1 + word.size() > (size_t)width) {
+                line += "\n" + std::string(indent, ' ');
+                column = indent;
+            } else if (column > (size_t)indent) {
+                line += ' ', ++column;
+            }
+            line += word, column += word.size();
+            word.clear();
+        }
+        policies += line + "\n";
+    }
+    std::string text = usage_text;
+    text.replace(text.find("%POLICIES%"), 10, policies);
+    return text;
 }
 
 bool parse_up(const std::string &name, Settings &s)
@@ -127,7 +170,7 @@ int parse(int argc, char **argv, CommandLine &c)
         };
         std::string v;
         if (a == "--help" || a == "-h") {
-            std::fputs(usage_text, stdout);
+            std::fputs(usage().c_str(), stdout);
             return 0;
         } else if (a == "--version") {
             std::printf("meshfix %d.%d.%d (meshfix.h %d.%d.%d; %s; %s)\n", MESHFIX_VERSION_MAJOR, MESHFIX_VERSION_MINOR,

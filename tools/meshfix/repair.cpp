@@ -87,6 +87,7 @@ UnitResult repair_unit(const Unit &u, const Settings &s)
     UnitResult r;
     meshfix_options o = options_for(u, s);
     size_t triangles = u.indices.size() / 3, vertices = u.positions.size() / 3;
+    r.doubtful_below = meshfix_doubtful_below(&o, s.policy);
     r.status = meshfix_inspect(u.indices.data(), u.indices.size(), u.positions.data(), vertices, 0, &o, &r.before,
                                nullptr);
     if (r.status != MESHFIX_OK)
@@ -111,28 +112,17 @@ UnitResult repair_unit(const Unit &u, const Settings &s)
 
 bool doubtful(const UnitResult &r, unsigned int patch)
 {
-    return patch < r.patch_confidence.size() && r.patch_confidence[patch] < 0.5f;
+    return patch < r.patch_confidence.size() && r.patch_confidence[patch] < r.doubtful_below;
 }
 
 meshfix_report combined_report(const std::vector<UnitResult> &results, bool after)
 {
-    /* verdicts from the least to the most to say about */
-    static const meshfix_verdict order[] = {MESHFIX_VERDICT_CLEAN, MESHFIX_VERDICT_REPAIRED, MESHFIX_VERDICT_INSIDE_OUT,
-                                            MESHFIX_VERDICT_INCONSISTENT, MESHFIX_VERDICT_DOUBTFUL,
-                                            MESHFIX_VERDICT_NOT_ORIENTABLE};
-    auto rank = [](meshfix_verdict v) {
-        for (int i = 0; i < 6; ++i)
-            if (order[i] == v)
-                return i;
-        return 0;
-    };
     meshfix_report sum = {};
     for (const UnitResult &u : results) {
         if (u.status != MESHFIX_OK)
             continue;
         const meshfix_report &r = after ? u.after : u.before;
-        if (rank(r.verdict) > rank(sum.verdict))
-            sum.verdict = r.verdict;
+        sum.verdict = meshfix_verdict_worst(sum.verdict, r.verdict);
         sum.triangles_flipped += r.triangles_flipped;
         sum.patches_flipped += r.patches_flipped;
         sum.patches_doubtful += r.patches_doubtful;

@@ -38,6 +38,7 @@ struct UnitResult {
     std::vector<unsigned char> triangle_flipped;
     std::vector<unsigned int> patch_ids;
     std::vector<float> patch_confidence;
+    float doubtful_below = 0.5f;  /* the library's bar for this unit's options (meshfix_doubtful_below) */
     Changes changes;
     size_t faces_flipped = 0;
     size_t faces_split = 0;       /* polygons whose triangles the library turned different ways */
