@@ -533,7 +533,8 @@ MESHFIX_API int meshfix_check(const void *indices, size_t index_count, const voi
 /* Scratch bytes that a call with these options on any mesh of these
    counts needs at most (the worst mesh of that size: a soup). A call
    given that much in options.memory.scratch allocates nothing. Returns 0
-   when the counts are too large or index_count is 0 (nothing needed). */
+   when the counts are too large, index_count is 0 (nothing needed) or
+   the options would be refused (MESHFIX_ERROR_INVALID_ARGUMENT). */
 MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count, const meshfix_options *options);
 
 /* Weld vertices closer than `tolerance` (0: equal positions, -0 == +0).
@@ -960,25 +961,22 @@ MESHFIX__PRIVATE int meshfix__is_finite_point(const float *p)
     return meshfix__is_finite(p[0]) && meshfix__is_finite(p[1]) && meshfix__is_finite(p[2]);
 }
 
-/* The formats of the options, checked: 0 means the default size, stride 0
-   packed x y z. Returns 0 for a size or stride it cannot read. */
+/* The call's buffers in the formats of the resolved options (>>public:
+   meshfix__resolve_options), stride 0 packed x y z. Returns 0 for a
+   stride it cannot read. */
 MESHFIX__PRIVATE int meshfix__describe_input(meshfix__input *in, const void *indices, size_t index_count,
                                             const void *positions, size_t vertex_count, size_t stride,
                                             const meshfix_options *o)
 {
     in->indices = (const unsigned char *)indices;
     in->index_count = index_count;
-    in->index_size = o->index_size == 0 ? 4u : o->index_size;
+    in->index_size = o->index_size;
     in->positions = (const unsigned char *)positions;
     in->vertex_count = vertex_count;
-    in->position_size = o->position_size == 0 ? 4u : o->position_size;
+    in->position_size = o->position_size;
     in->stride = stride != 0 ? stride : 3 * (size_t)in->position_size;
     in->topology = positions != NULL ? (int)o->topology : (int)MESHFIX_TOPOLOGY_INDICES;
     in->weld_tolerance = o->weld_tolerance;
-    if ((in->index_size != 2 && in->index_size != 4) || (in->position_size != 4 && in->position_size != 8) ||
-        (unsigned int)o->topology > (unsigned int)MESHFIX_TOPOLOGY_WELD ||
-        !(meshfix__is_finite(o->weld_tolerance) && o->weld_tolerance >= 0.0f))
-        return 0;
     /* positions are read as floats, or doubles by copy: 4-byte steps */
     return positions == NULL || (in->stride >= 3 * (size_t)in->position_size && in->stride % 4 == 0);
 }
@@ -1782,14 +1780,14 @@ MESHFIX__PRIVATE int meshfix__authored_normal(const meshfix__mesh *m, unsigned i
     int k;
     out[0] = out[1] = out[2] = 0.0;
     if (o->evidence.triangle_normals != NULL) {
-        size_t stride = o->evidence.triangle_normals_stride != 0 ? o->evidence.triangle_normals_stride : 3 * sizeof(float);
+        size_t stride = o->evidence.triangle_normals_stride;
         const float *n = (const float *)(const void *)((const char *)o->evidence.triangle_normals + (size_t)t * stride);
         if (!meshfix__is_finite_point(n))
             return 0;
         for (k = 0; k < 3; ++k)
             out[k] = (double)n[k];
     } else if (o->evidence.vertex_normals != NULL) {
-        size_t stride = o->evidence.vertex_normals_stride != 0 ? o->evidence.vertex_normals_stride : 3 * sizeof(float);
+        size_t stride = o->evidence.vertex_normals_stride;
         for (c = 0; c < 3; ++c) {
             /* by the caller's index: its normal, not the joined vertex's */
             size_t v = meshfix__source_index(m->input, 3 * (size_t)t + c);
@@ -7627,6 +7625,10 @@ MESHFIX__PRIVATE int meshfix__options_valid(const meshfix_options *o, int policy
         return 0;
     if (o->memory.alloc_func != NULL && o->memory.free_func == NULL)
         return 0;
+    if ((o->index_size != 2 && o->index_size != 4) || (o->position_size != 4 && o->position_size != 8) ||
+        (unsigned int)o->topology > (unsigned int)MESHFIX_TOPOLOGY_WELD ||
+        !(meshfix__is_finite(o->weld_tolerance) && o->weld_tolerance >= 0.0f))
+        return 0;
     if (!meshfix__stride_valid(o->evidence.triangle_normals_stride) ||
         !meshfix__stride_valid(o->evidence.vertex_normals_stride))
         return 0;
@@ -7637,11 +7639,19 @@ MESHFIX__PRIVATE int meshfix__options_valid(const meshfix_options *o, int policy
            meshfix__is_fraction(o->sdf.step, 3e38f) && meshfix__is_finite_point(o->up);
 }
 
-/* Every option left 0 gets its default, in the call's own copy: the
-   stages read the options as they are. (visibility.rays 0 stays: its
-   default depends on the patches, meshfix__ray_budget.) */
+/* Every option left 0 gets its default. (visibility.rays 0 stays: its
+   default depends on the patches, meshfix__ray_budget; sdf.step 0 on
+   each triangle, meshfix__sdf_gradient.) */
 MESHFIX__PRIVATE void meshfix__fill_defaults(meshfix_options *o)
 {
+    if (o->index_size == 0)
+        o->index_size = 4;
+    if (o->position_size == 0)
+        o->position_size = 4;
+    if (o->evidence.triangle_normals_stride == 0)
+        o->evidence.triangle_normals_stride = 3 * sizeof(float);
+    if (o->evidence.vertex_normals_stride == 0)
+        o->evidence.vertex_normals_stride = 3 * sizeof(float);
     if (o->evidence.sigma == 0)
         o->evidence.sigma = 3.0f;
     if (o->up[0] == 0 && o->up[1] == 0 && o->up[2] == 0)
@@ -7658,6 +7668,34 @@ MESHFIX__PRIVATE void meshfix__fill_defaults(meshfix_options *o)
         o->visibility.eps = 0.02f;
     if (o->visibility.kv == 0)
         o->visibility.kv = 1.5f;
+}
+
+/* The options a call runs with, resolved once: the caller's copied (NULL:
+   all zero), every default filled, then every field checked. Every stage
+   reads this copy and nothing else; no index has been read yet. */
+MESHFIX__PRIVATE int meshfix__resolve_options(const meshfix_options *caller, int policy, meshfix_options *o)
+{
+    if (caller != NULL)
+        *o = *caller;
+    else
+        MESHFIX_MEMSET(o, 0, sizeof(*o));
+    meshfix__fill_defaults(o);
+    return meshfix__options_valid(o, policy);
+}
+
+/* The policy a call runs (< 0: inspect): AUTO without positions is
+   MAJORITY; a policy without what it needs is refused. */
+MESHFIX__PRIVATE meshfix_result meshfix__resolve_policy(int *policy, const meshfix__input *in,
+                                                      const meshfix_options *o)
+{
+    if (*policy == MESHFIX_POLICY_AUTO && in->positions == NULL)
+        *policy = MESHFIX_POLICY_MAJORITY;
+    if (*policy >= 0 && meshfix__policies[*policy].needs_positions && in->positions == NULL)
+        return MESHFIX_ERROR_POSITIONS_REQUIRED;
+    if (*policy >= 0 && meshfix__policies[*policy].needs_normals && o->evidence.triangle_normals == NULL &&
+        o->evidence.vertex_normals == NULL)
+        return MESHFIX_ERROR_NORMALS_REQUIRED;
+    return MESHFIX_OK;
 }
 
 MESHFIX__PRIVATE meshfix_verdict meshfix__verdict(const meshfix_report *r, int policy)
@@ -7677,8 +7715,9 @@ MESHFIX__PRIVATE meshfix_verdict meshfix__verdict(const meshfix_report *r, int p
    meshfix_check wants to know beyond the report. */
 typedef struct meshfix__call {
     void *destination;
+    meshfix_options options;         /* resolved: meshfix__resolve_options */
     meshfix__input input;
-    int policy;                      /* < 0: inspect */
+    int policy;                      /* < 0: inspect; as it runs (meshfix__resolve_policy) */
     meshfix_report *report;
     meshfix_outputs *outputs;
     unsigned int requirements;       /* meshfix_check: explain the first that fails */
@@ -7687,7 +7726,7 @@ typedef struct meshfix__call {
 
 /* The pipeline shared by orient, inspect (policy < 0) and check. Outputs
    are written only after every check has passed and the work is done. */
-MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call, const meshfix_options *caller_options)
+MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call)
 {
     meshfix_memory_options allocator;
     meshfix__plan plan;
@@ -7702,31 +7741,18 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call, const meshfix_
     const meshfix__input *in = &call->input;
     meshfix_result result;
 
-    /* copies: NULL means all zero, and the report may share memory with
-       the caller's options or outputs (it is written last) */
-    if (caller_options != NULL)
-        options = *caller_options;
-    else
-        MESHFIX_MEMSET(&options, 0, sizeof(options));
+    /* the options were resolved (meshfix__call_setup); the report may
+       share memory with the caller's outputs (it is written last) */
+    options = call->options;
     if (call->outputs != NULL)
         outputs = *call->outputs;
     else
         MESHFIX_MEMSET(&outputs, 0, sizeof(outputs));
 
-    /* 1. validate, before touching anything */
+    /* 1. validate the indices, before anything else reads them */
     result = meshfix__validate(in, &vertex_range, &plan);
     if (result != MESHFIX_OK)
         return result;
-    if (policy == MESHFIX_POLICY_AUTO && in->positions == NULL)
-        policy = MESHFIX_POLICY_MAJORITY;
-    if (policy >= 0 && meshfix__policies[policy].needs_positions && in->positions == NULL)
-        return MESHFIX_ERROR_POSITIONS_REQUIRED;
-    if (policy >= 0 && meshfix__policies[policy].needs_normals && options.evidence.triangle_normals == NULL &&
-        options.evidence.vertex_normals == NULL)
-        return MESHFIX_ERROR_NORMALS_REQUIRED;
-    if (!meshfix__options_valid(&options, policy))
-        return MESHFIX_ERROR_INVALID_ARGUMENT;
-    meshfix__fill_defaults(&options);
     MESHFIX_MEMSET(&r, 0, sizeof(r));
     r.mesh.triangles = in->index_count / 3;
     if (in->index_count == 0) {
@@ -8062,17 +8088,15 @@ MESHFIX__PRIVATE meshfix_result meshfix__call_setup(meshfix__call *call, void *d
                                                   size_t stride, const meshfix_options *options, int policy,
                                                   meshfix_report *report, meshfix_outputs *outputs)
 {
-    meshfix_options zero;
     MESHFIX_MEMSET(call, 0, sizeof(*call));
-    MESHFIX_MEMSET(&zero, 0, sizeof(zero));
     call->destination = destination;
-    call->policy = policy;
     call->report = report;
     call->outputs = outputs;
-    if (!meshfix__describe_input(&call->input, indices, index_count, positions, vertex_count, stride,
-                                 options != NULL ? options : &zero))
+    if (!meshfix__resolve_options(options, policy, &call->options) ||
+        !meshfix__describe_input(&call->input, indices, index_count, positions, vertex_count, stride, &call->options))
         return MESHFIX_ERROR_INVALID_ARGUMENT;
-    return MESHFIX_OK;
+    call->policy = policy;
+    return meshfix__resolve_policy(&call->policy, &call->input, &call->options);
 }
 
 MESHFIX_API meshfix_result meshfix_orient(void *destination, const void *indices, size_t index_count,
@@ -8087,7 +8111,7 @@ MESHFIX_API meshfix_result meshfix_orient(void *destination, const void *indices
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     result = meshfix__call_setup(&call, destination, indices, index_count, positions, vertex_count, stride, options,
                                  policy, report, outputs);
-    return result != MESHFIX_OK ? result : meshfix__run(&call, options);
+    return result != MESHFIX_OK ? result : meshfix__run(&call);
 }
 
 MESHFIX_API meshfix_result meshfix_inspect(const void *indices, size_t index_count, const void *positions,
@@ -8100,7 +8124,7 @@ MESHFIX_API meshfix_result meshfix_inspect(const void *indices, size_t index_cou
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     result = meshfix__call_setup(&call, NULL, indices, index_count, positions, vertex_count, stride, options, -1,
                                  report, outputs);
-    return result != MESHFIX_OK ? result : meshfix__run(&call, options);
+    return result != MESHFIX_OK ? result : meshfix__run(&call);
 }
 
 MESHFIX_API int meshfix_check(const void *indices, size_t index_count, const void *positions, size_t vertex_count,
@@ -8122,7 +8146,7 @@ MESHFIX_API int meshfix_check(const void *indices, size_t index_count, const voi
     if (result == MESHFIX_OK) {
         call.requirements = requirements;
         call.failure = f;
-        result = meshfix__run(&call, options);
+        result = meshfix__run(&call);
     }
     if (result != MESHFIX_OK) {
         MESHFIX_MEMSET(f, 0, sizeof(*f));
@@ -8160,19 +8184,20 @@ MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count,
     meshfix__geometry_counts worst;
     meshfix__geometry_plan geometry;
     meshfix__input in;
-    meshfix_options zero;
+    meshfix_options resolved;
     size_t triangles = index_count / 3;
     int policy = options != NULL ? (int)options->policy : (int)MESHFIX_POLICY_AUTO;
     static const float some_position[3] = {0, 0, 0};
-    MESHFIX_MEMSET(&zero, 0, sizeof(zero));
     /* the plan of a mesh with positions: the input stage's arrays included */
-    if (!meshfix__describe_input(&in, NULL, index_count, some_position, vertex_count, 0,
-                                 options != NULL ? options : &zero))
+    if (policy < 0 || policy >= (int)MESHFIX_POLICY_COUNT)
+        return 0;
+    if (!meshfix__resolve_options(options, -1, &resolved) ||
+        !meshfix__describe_input(&in, NULL, index_count, some_position, vertex_count, 0, &resolved))
         return 0;
     if (index_count == 0 || index_count > MESHFIX__MAX_INDEX_COUNT ||
         !meshfix__make_plan(&plan, vertex_count, triangles, &in))
         return 0;
-    if (policy != MESHFIX_POLICY_AUTO && policy != MESHFIX_POLICY_OUTWARD && policy != MESHFIX_POLICY_VISIBILITY)
+    if (!meshfix__policies[policy].casts_rays)
         return plan.total;
     /* the worst mesh: a soup, every triangle its own patch, every edge a boundary or in a ring */
     worst.triangles = worst.patches = triangles;

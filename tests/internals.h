@@ -5,25 +5,26 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A mesh bound to scratch of its own (free `block` after), its input
-   read (the options' topology) and degenerate and non-finite triangles
-   marked. */
+/* A mesh bound to scratch of its own (free `block` after), set up as a
+   call sets it up (meshfix__call_setup: the options resolved, the input
+   described), its input read (the options' topology) and degenerate and
+   non-finite triangles marked. */
 static unsigned char *bind_mesh(meshfix__mesh *m, const meshfix_options *o, const unsigned int *indices,
                                 size_t index_count, const float *positions, size_t vertex_count)
 {
     static meshfix_outputs no_outputs;
     meshfix__plan plan;
-    meshfix__input input, *kept;
+    meshfix__call call, *kept;
     unsigned char *block, *aligned;
-    size_t head = (sizeof(meshfix__input) + 15) / 16 * 16;
-    meshfix__describe_input(&input, indices, index_count, positions, vertex_count, 12, o);
-    meshfix__make_plan(&plan, vertex_count, index_count / 3, &input);
+    size_t head = (sizeof(meshfix__call) + 15) / 16 * 16;
+    meshfix__call_setup(&call, NULL, indices, index_count, positions, vertex_count, 12, o, -1, NULL, NULL);
+    meshfix__make_plan(&plan, vertex_count, index_count / 3, &call.input);
     block = (unsigned char *)malloc(head + plan.total + 16);
-    kept = (meshfix__input *)(void *)block; /* m->input points at it: it lives as long as the block */
-    *kept = input;
+    kept = (meshfix__call *)(void *)block; /* m->input and m->options point into it: it lives as long as the block */
+    *kept = call;
     aligned = block + head + (16 - (size_t)(block + head) % 16) % 16;
-    meshfix__bind(m, aligned, &plan, kept, vertex_count, o, &no_outputs, 0);
-    meshfix__read_input(m, kept, &plan, aligned);
+    meshfix__bind(m, aligned, &plan, &kept->input, vertex_count, &kept->options, &no_outputs, 0);
+    meshfix__read_input(m, &kept->input, &plan, aligned);
     meshfix__mark_degenerate(m);
     return block;
 }

@@ -1010,6 +1010,42 @@ static void test_policy_info(void)
     mio_free(&g);
 }
 
+/* The options are resolved and checked whole before any index is read:
+   a bad option is refused as such even where the indices are bad too
+   (an index out of range, a count that is no multiple of 3), and
+   meshfix_scratch_size refuses it the same way (0). */
+static void test_options_before_indices(void)
+{
+    static const unsigned int bad_indices[] = {0, 2, 1, 0, 1, 99};
+    meshfix_options o;
+    meshfix_report r;
+    meshfix_check_failure why;
+    int k;
+    for (k = 0; k < 4; ++k) {
+        memset(&o, 0, sizeof(o));
+        if (k == 0)
+            o.evidence.sigma = -1.0f;
+        else if (k == 1)
+            o.index_size = 3;
+        else if (k == 2)
+            o.evidence.triangle_normals_stride = 7;
+        else
+            o.visibility.rays = (size_t)1 << 30;
+        CHECK_EQ(meshfix_orient(NULL, bad_indices, 6, tetra_positions, 4, 12, &o, &r, NULL),
+                 MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK_EQ(meshfix_orient(NULL, bad_indices, 5, tetra_positions, 4, 12, &o, &r, NULL),
+                 MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK_EQ(meshfix_inspect(bad_indices, 6, tetra_positions, 4, 12, &o, &r, NULL), MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK(!meshfix_check(bad_indices, 6, tetra_positions, 4, 12, 0, &o, &why));
+        CHECK_EQ(why.result, MESHFIX_ERROR_INVALID_ARGUMENT);
+        CHECK_EQ(meshfix_scratch_size(6, 4, &o), 0);
+    }
+    memset(&o, 0, sizeof(o));
+    CHECK_EQ(meshfix_orient(NULL, bad_indices, 6, tetra_positions, 4, 12, &o, &r, NULL),
+             MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
+    CHECK(meshfix_scratch_size(6, 4, &o) > 0);
+}
+
 /* meshfix_doubtful_below is the bar the report counts by: a patch just
    under it is doubtful, one at it is not. */
 static void test_doubtful_below(void)
@@ -1082,6 +1118,7 @@ static const test_case tests[] = {
     {"real models: scrambled and repaired", test_real_models},
     {"hostile and truncated files", test_hostile_files},
     {"policy info: what each policy needs and does", test_policy_info},
+    {"options checked before any index is read", test_options_before_indices},
     {"doubtful below: the report's bar", test_doubtful_below},
     {"verdict worst: the order of verdicts", test_verdict_worst},
 };
