@@ -453,9 +453,9 @@ typedef struct meshfix_evidence_counts {
                                      whose winding and normals keep them in (a room); geometry alone turns the
                                      rest out */
     size_t rays_cast;
-    size_t patch_pairs;           /* VISIBILITY: pairs of patches with a coherence */
-    size_t patches_merged;        /* VISIBILITY: merges into super-patches */
-    size_t pairs_conflicting;     /* VISIBILITY: pairs left wound against their coherence */
+    size_t patch_pairs;           /* geometric policies: pairs of patches with a coherence */
+    size_t patches_merged;        /* geometric policies: joins into units (VISIBILITY: super-patches) */
+    size_t pairs_conflicting;     /* geometric policies: pairs left wound against their coherence */
     size_t sdf_evaluations;       /* SDF: calls of distance and gradient */
     size_t triangles_sdf_disagree; /* SDF: triangles whose own vote disagrees with their patch's */
     size_t triangles_against_normals; /* flipped although their clear normal (options.evidence) agreed with
@@ -722,6 +722,20 @@ MESHFIX_API meshfix_verdict meshfix_verdict_worst(meshfix_verdict a, meshfix_ver
 
 typedef char meshfix__unsigned_int_is_32_bits[sizeof(unsigned int) == 4 ? 1 : -1];
 
+/* Runs task(context, 0 .. count - 1) on the caller's parallel_for when it
+   gave one and there are two tasks or more, else here in order. Each task
+   writes only its own part, so the result is the same either way. */
+MESHFIX__PRIVATE void meshfix__run_tasks(const meshfix_options *o, void (*task)(void *context, size_t index),
+                                        void *context, size_t count)
+{
+    size_t i;
+    if (o != NULL && o->parallel_for != NULL && count > 1)
+        o->parallel_for(task, context, count, o->parallel_user);
+    else
+        for (i = 0; i < count; ++i)
+            task(context, i);
+}
+
 /* ===== >>memory ===== */
 
 /* The caller's mesh as given: formats resolved (sizes 2 or 4 and 4 or 8,
@@ -764,12 +778,6 @@ MESHFIX__PRIVATE int meshfix__add_size(size_t *total, size_t count, size_t eleme
     return meshfix__add_aligned(total, count, element_size, 16, offset);
 }
 
-/* One block holds every array. `work` holds the edge buckets, then the
-   duplicate table, then the union-find parents, which become patch ids,
-   and each patch's list of triangles. `mate` holds each half-edge's higher
-   vertex until its bucket links it, and groups patches by component at
-   the end. On machines where a fresh page costs microseconds, these bytes
-   are most of the time. */
 /* The input stage: corners joined by position (or 16-bit indices widened)
    need their own indices, the join a welder's arrays, double positions
    their float copy. */
@@ -778,6 +786,12 @@ MESHFIX__PRIVATE int meshfix__joins_positions(const meshfix__input *in)
     return in->positions != NULL && in->topology != MESHFIX_TOPOLOGY_INDICES;
 }
 
+/* One block holds every array. `work` holds the edge buckets, then the
+   duplicate table, then the union-find parents, which become patch ids,
+   and each patch's list of triangles. `mate` holds each half-edge's higher
+   vertex until its bucket links it, and groups patches by component at
+   the end. On machines where a fresh page costs microseconds, these bytes
+   are most of the time. */
 MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count,
                                         const meshfix__input *in)
 {
@@ -5041,7 +5055,7 @@ MESHFIX__PRIVATE void meshfix__find_all_partners(const meshfix__geometry *g, mes
                                                 unsigned int n, const meshfix__grid *grid, double reach, double beyond)
 {
     meshfix__partner_task task;
-    size_t chunks = ((size_t)n + MESHFIX__SEGMENTS_PER_TASK - 1) / MESHFIX__SEGMENTS_PER_TASK, c;
+    size_t chunks = ((size_t)n + MESHFIX__SEGMENTS_PER_TASK - 1) / MESHFIX__SEGMENTS_PER_TASK;
     unsigned int i;
     task.segments = segments;
     task.count = n;
@@ -5052,11 +5066,7 @@ MESHFIX__PRIVATE void meshfix__find_all_partners(const meshfix__geometry *g, mes
     for (i = 0; i < n; ++i)
         if (beyond == 0 || meshfix__too_long_for(beyond, &segments[i], reach))
             task.longest_half = meshfix__maxd(task.longest_half, 0.5 * segments[i].length);
-    if (g->o->parallel_for != NULL && chunks > 1)
-        g->o->parallel_for(meshfix__partner_chunk, &task, chunks, g->o->parallel_user);
-    else
-        for (c = 0; c < chunks; ++c)
-            meshfix__partner_chunk(&task, c);
+    meshfix__run_tasks(g->o, meshfix__partner_chunk, &task, chunks);
 }
 
 MESHFIX__PRIVATE int meshfix__any_too_long(const meshfix__segment *segments, unsigned int n, double cell, double reach)
@@ -5970,12 +5980,8 @@ MESHFIX__PRIVATE void meshfix__drop_unanchored(const meshfix__geometry *g, const
 
 MESHFIX__PRIVATE void meshfix__ask_members(meshfix__member_task *task)
 {
-    size_t chunks = (task->g->m->patch_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK, c;
-    if (task->g->o->parallel_for != NULL)
-        task->g->o->parallel_for(meshfix__member_chunk, task, chunks, task->g->o->parallel_user);
-    else
-        for (c = 0; c < chunks; ++c)
-            meshfix__member_chunk(task, c);
+    size_t chunks = (task->g->m->patch_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK;
+    meshfix__run_tasks(task->g->o, meshfix__member_chunk, task, chunks);
 }
 
 /* The sides of the members near a turn (sides[p] 0 elsewhere);
@@ -6408,9 +6414,6 @@ MESHFIX__PRIVATE void meshfix__open_evidence(const meshfix__geometry *g, unsigne
     u->mean = u->error = u->weight = 0.0;
 }
 
-/* The units' evidence in chunks, on the caller's threads if it gave a
-   parallel_for: each unit is measured alone, so the order does not
-   matter. */
 /* The phases of gathering, in order: gapped units to nearly closed or
    open; then shells (nesting); then open units. */
 #define MESHFIX__PHASE_GAPS 0
@@ -6441,18 +6444,17 @@ MESHFIX__PRIVATE void meshfix__evidence_chunk(void *context, size_t chunk)
     }
 }
 
+/* The units' evidence in chunks, on the caller's threads if it gave a
+   parallel_for: each unit is measured alone, so the order does not
+   matter. */
 MESHFIX__PRIVATE void meshfix__gather_evidence(meshfix__geometry *g, int phase, double total_area)
 {
     meshfix__evidence_task task;
-    size_t chunks = (g->unit_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK, c;
+    size_t chunks = (g->unit_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK;
     task.g = g;
     task.total_area = total_area;
     task.phase = phase;
-    if (g->o->parallel_for != NULL)
-        g->o->parallel_for(meshfix__evidence_chunk, &task, chunks, g->o->parallel_user);
-    else
-        for (c = 0; c < chunks; ++c)
-            meshfix__evidence_chunk(&task, c);
+    meshfix__run_tasks(g->o, meshfix__evidence_chunk, &task, chunks);
 }
 
 /* The trees every measurement may walk, built before the measuring runs
@@ -6479,7 +6481,7 @@ MESHFIX__PRIVATE void meshfix__tree_chunk(void *context, size_t chunk)
 MESHFIX__PRIVATE void meshfix__build_unit_trees(meshfix__geometry *g)
 {
     meshfix__tree_task task;
-    size_t chunks = g->unit_count < MESHFIX__TREE_TASKS ? g->unit_count : MESHFIX__TREE_TASKS, c;
+    size_t chunks = g->unit_count < MESHFIX__TREE_TASKS ? g->unit_count : MESHFIX__TREE_TASKS;
     unsigned int u;
     /* the large units first, one at a time, each build on every thread */
     if (g->o->parallel_for != NULL)
@@ -6489,11 +6491,7 @@ MESHFIX__PRIVATE void meshfix__build_unit_trees(meshfix__geometry *g)
     task.bvh = &g->bvh;
     task.m = g->m;
     task.unit_count = g->unit_count;
-    if (g->o->parallel_for != NULL && chunks > 1)
-        g->o->parallel_for(meshfix__tree_chunk, &task, chunks, g->o->parallel_user);
-    else
-        for (c = 0; c < chunks; ++c)
-            meshfix__tree_chunk(&task, c);
+    meshfix__run_tasks(g->o, meshfix__tree_chunk, &task, chunks);
 }
 
 /* The tree over the boxes of the closed and nearly closed units. */
@@ -6743,8 +6741,6 @@ MESHFIX__PRIVATE size_t meshfix__turn_patch(meshfix__mesh *m, unsigned int p, in
 
 /* ===== >>geometry ===== */
 
-/* Units known: the trees' slots, per unit, and the scratch for trees over
-   units. Returns 0 when out of memory. */
 /* A unit's slots patch by patch (each patch's in its flood-fill order),
    so that the samples of one member can be drawn from its own slots. */
 MESHFIX__PRIVATE void meshfix__slots_by_patch(meshfix__geometry *g)
@@ -6765,6 +6761,8 @@ MESHFIX__PRIVATE void meshfix__slots_by_patch(meshfix__geometry *g)
     MESHFIX_MEMCPY(b->order, b->by_index, b->count * sizeof(unsigned int));
 }
 
+/* Units known: the trees' slots, per unit, and the scratch for trees over
+   units. Returns 0 when out of memory. */
 MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
 {
     meshfix__mesh *m = g->m;
@@ -7012,7 +7010,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
     meshfix__merge_params k;
     meshfix__visibility_task task;
     unsigned int p, *samples = NULL;
-    size_t i, chunks, c;
+    size_t i, chunks;
     int ok = 0;
     MESHFIX_MEMSET(&merge, 0, sizeof(merge));
     MESHFIX_MEMSET(&coherence, 0, sizeof(coherence));
@@ -7039,11 +7037,7 @@ MESHFIX__PRIVATE int meshfix__decide_by_visibility(meshfix__geometry *g, meshfix
         task.total_area = meshfix__total_area(g);
         task.samples = samples;
         chunks = (m->patch_count + MESHFIX__UNITS_PER_TASK - 1) / MESHFIX__UNITS_PER_TASK;
-        if (o->parallel_for != NULL)
-            o->parallel_for(meshfix__visibility_chunk, &task, chunks, o->parallel_user);
-        else
-            for (c = 0; c < chunks; ++c)
-                meshfix__visibility_chunk(&task, c);
+        meshfix__run_tasks(o, meshfix__visibility_chunk, &task, chunks);
     }
     for (p = 0; p < m->patch_count; ++p)
         r->evidence.rays_cast += samples[p];
