@@ -544,7 +544,8 @@ MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count,
    earliest representative within the tolerance, so clusters do not chain.
    Returns MESHFIX_ERROR_NON_FINITE for a NaN or infinite position; on
    error remap is not written. remap holds vertex_count elements;
-   unique_count may be NULL; options: position_size and memory. */
+   unique_count may be NULL; options: position_size and memory are used,
+   and options a call would refuse are refused here too. */
 MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const void *positions, size_t vertex_count,
                                         size_t stride, float tolerance, const meshfix_options *options,
                                         size_t *unique_count);
@@ -786,6 +787,25 @@ MESHFIX__PRIVATE int meshfix__joins_positions(const meshfix__input *in)
     return in->positions != NULL && in->topology != MESHFIX_TOPOLOGY_INDICES;
 }
 
+/* The welder's one layout, for the pipeline's join and meshfix_weld
+   alike: a power of two of buckets, at least the vertices; then in words
+   the bucket ends, and per vertex order, home, rep_head and rep_next.
+   meshfix__welder_words returns 0 when that many words overflow. */
+MESHFIX__PRIVATE size_t meshfix__weld_buckets(size_t vertices)
+{
+    size_t buckets = 16;
+    while (buckets < vertices)
+        buckets *= 2;
+    return buckets;
+}
+
+MESHFIX__PRIVATE size_t meshfix__welder_words(size_t vertices, size_t buckets)
+{
+    if (vertices > (((size_t)-1) / sizeof(unsigned int) - buckets) / 5)
+        return 0; /* 5: room for meshfix_weld's result after the welder's four */
+    return buckets + 4 * vertices;
+}
+
 /* One block holds every array. `work` holds the edge buckets, then the
    duplicate table, then the union-find parents, which become patch ids,
    and each patch's list of triangles. `mate` holds each half-edge's higher
@@ -795,7 +815,7 @@ MESHFIX__PRIVATE int meshfix__joins_positions(const meshfix__input *in)
 MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count,
                                         const meshfix__input *in)
 {
-    size_t total = 0, half_edges, buckets = 16, joined, own_corners, points;
+    size_t total = 0, half_edges, buckets, joined, own_corners, points, welder;
     /* vertex_range + 1 must not wrap where size_t has 32 bits */
     if (triangle_count > MESHFIX__MAX_INDEX_COUNT / 3 || vertex_range >= ((size_t)-1) ||
         vertex_range > MESHFIX__MAX_VERTEX_COUNT)
@@ -804,15 +824,14 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
     joined = meshfix__joins_positions(in) ? vertex_range : 0;
     own_corners = joined != 0 || in->index_size == 2 ? half_edges : 0;
     points = in->positions != NULL && in->position_size == 8 ? vertex_range : 0;
-    while (joined != 0 && buckets < joined)
-        buckets *= 2;
-    plan->weld_buckets = joined != 0 ? buckets : 0;
-    /* the welder: bucket ends, then order, home, rep_head, rep_next per vertex */
-    if (joined > (((size_t)-1) / 4 - buckets) / 4)
+    buckets = joined != 0 ? meshfix__weld_buckets(joined) : 0;
+    welder = joined != 0 ? meshfix__welder_words(joined, buckets) : 0;
+    plan->weld_buckets = buckets;
+    if (joined != 0 && welder == 0)
         return 0;
     return meshfix__add_size(&total, own_corners, 4, &plan->corners) &&
            meshfix__add_size(&total, joined, 4, &plan->remap) &&
-           meshfix__add_size(&total, joined != 0 ? buckets + 4 * joined : 0, 4, &plan->weld) &&
+           meshfix__add_size(&total, welder, 4, &plan->weld) &&
            meshfix__add_size(&total, points, 3 * sizeof(float), &plan->points) &&
            meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
            meshfix__add_size(&total, half_edges + 16, 4, &plan->work) &&
@@ -1188,6 +1207,17 @@ typedef struct meshfix__welder {
     unsigned int *rep_next;  /* per representative: the previous one in its cell */
 } meshfix__welder;
 
+/* The welder's arrays from `words` (sized by meshfix__welder_words). */
+MESHFIX__PRIVATE void meshfix__carve_welder(meshfix__welder *w, unsigned int *words, size_t vertices, size_t buckets)
+{
+    w->mask = buckets - 1;
+    w->bucket_end = words;
+    w->order = words + buckets;
+    w->home = w->order + vertices;
+    w->rep_head = w->home + vertices;
+    w->rep_next = w->rep_head + vertices;
+}
+
 /* A vertex's x y z as given, float or double, in double; 0 when one is
    NaN or infinite. */
 MESHFIX__PRIVATE int meshfix__read_point(const unsigned char *positions, size_t stride, unsigned int size, size_t v,
@@ -1444,12 +1474,7 @@ MESHFIX__PRIVATE void meshfix__join_vertices(const meshfix__mesh *m, const meshf
     w.position_size = in->position_size;
     w.skip_non_finite = 1;
     w.cell = tolerance * (1.0 + 1e-9);
-    w.mask = plan->weld_buckets - 1;
-    w.bucket_end = (unsigned int *)(void *)(block + plan->weld);
-    w.order = w.bucket_end + plan->weld_buckets;
-    w.home = w.order + vertices;
-    w.rep_head = w.home + vertices;
-    w.rep_next = w.rep_head + vertices;
+    meshfix__carve_welder(&w, (unsigned int *)(void *)(block + plan->weld), vertices, plan->weld_buckets);
     meshfix__weld_run(&w, vertices, tolerance, remap);
 }
 
@@ -7718,6 +7743,15 @@ typedef struct meshfix__call {
     meshfix_check_failure *failure;
 } meshfix__call;
 
+/* The call's scratch in one layout, from its first byte: the topology's
+   arrays (plan->total counts the skip to their 16-byte boundary), then
+   the geometric stage's arena (its plan counts its own alignment). The
+   run and meshfix_scratch_size both lay a call out by it. */
+MESHFIX__PRIVATE size_t meshfix__geometry_offset(const meshfix__plan *plan)
+{
+    return plan->total;
+}
+
 /* The pipeline shared by orient, inspect (policy < 0) and check. Outputs
    are written only after every check has passed and the work is done. */
 MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call)
@@ -7730,7 +7764,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call)
     meshfix_outputs outputs;
     meshfix__block rest;
     unsigned char *raw, *block;
-    size_t vertex_range = 0, topology, joined;
+    size_t vertex_range = 0, joined;
     int policy = call->policy, full;
     const meshfix__input *in = &call->input;
     meshfix_result result;
@@ -7775,10 +7809,9 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call)
     m.failure = call->failure;
     /* what the caller's scratch holds beyond the topology: the geometry's */
     MESHFIX_MEMSET(&rest, 0, sizeof(rest));
-    topology = (size_t)(block - raw) + ((plan.total - 16 + 15) & ~(size_t)15);
     if (options.memory.scratch != NULL) {
-        rest.base = raw + topology;
-        rest.size = options.memory.scratch_size > topology ? options.memory.scratch_size - topology : 0;
+        rest.base = raw + meshfix__geometry_offset(&plan);
+        rest.size = options.memory.scratch_size - meshfix__geometry_offset(&plan);
     }
 
     /* 2. input: vertex ids after the topology, float positions */
@@ -8196,9 +8229,10 @@ MESHFIX_API size_t meshfix_scratch_size(size_t index_count, size_t vertex_count,
     /* the worst mesh: a soup, every triangle its own patch, every edge a boundary or in a ring */
     worst.triangles = worst.patches = triangles;
     worst.boundary = worst.rings = worst.largest_ring = 3 * triangles;
-    if (!meshfix__plan_geometry(&worst, policy, &geometry) || plan.total + 16 + geometry.total < geometry.total)
+    if (!meshfix__plan_geometry(&worst, policy, &geometry) ||
+        meshfix__geometry_offset(&plan) + geometry.total < geometry.total)
         return 0;
-    return plan.total + 16 + geometry.total;
+    return meshfix__geometry_offset(&plan) + geometry.total;
 }
 
 MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const void *positions, size_t vertex_count,
@@ -8206,37 +8240,37 @@ MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const void *positio
                                         size_t *unique_count)
 {
     meshfix_memory_options allocator;
+    meshfix_options resolved;
     meshfix__welder w;
     unsigned int *block, *result;
-    unsigned int size = options != NULL && options->position_size != 0 ? options->position_size : 4u;
-    size_t v, buckets = 16, unique, words;
+    unsigned int size;
+    size_t v, buckets, unique, words;
     double p[3];
     if (vertex_count == 0) {
         if (unique_count != NULL)
             *unique_count = 0;
         return MESHFIX_OK;
     }
+    if (!meshfix__resolve_options(options, -1, &resolved))
+        return MESHFIX_ERROR_INVALID_ARGUMENT;
+    size = resolved.position_size;
     if (stride == 0)
         stride = 3 * (size_t)size;
-    if (remap == NULL || positions == NULL || (size != 4 && size != 8) || stride < 3 * (size_t)size ||
-        stride % 4 != 0 || !meshfix__is_finite(tolerance) || tolerance < 0.0f)
+    if (remap == NULL || positions == NULL || stride < 3 * (size_t)size || stride % 4 != 0 ||
+        !meshfix__is_finite(tolerance) || tolerance < 0.0f)
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     if (vertex_count > MESHFIX__MAX_VERTEX_COUNT - 1 || !meshfix__vertices_addressable(vertex_count, stride, 3 * (size_t)size))
         return MESHFIX_ERROR_TOO_LARGE;
     for (v = 0; v < vertex_count; ++v)
         if (!meshfix__read_point((const unsigned char *)positions, stride, size, v, p))
             return MESHFIX_ERROR_NON_FINITE;
-    if (options != NULL && options->memory.alloc_func != NULL && options->memory.free_func == NULL)
-        return MESHFIX_ERROR_INVALID_ARGUMENT;
-    meshfix__pick_allocator(options, &allocator);
-    while (buckets < vertex_count)
-        buckets *= 2;
-    /* bucket ends, then order, home, rep_head, rep_next and the result:
-       five words per vertex, checked against overflow */
-    if (vertex_count > ((size_t)-1) / sizeof(unsigned int) / 5 - buckets)
+    meshfix__pick_allocator(&resolved, &allocator);
+    /* the welder's words, then the result */
+    buckets = meshfix__weld_buckets(vertex_count);
+    words = meshfix__welder_words(vertex_count, buckets);
+    if (words == 0)
         return MESHFIX_ERROR_TOO_LARGE;
-    words = buckets + 5 * vertex_count;
-    block = (unsigned int *)meshfix__allocate(&allocator, words, sizeof(unsigned int));
+    block = (unsigned int *)meshfix__allocate(&allocator, words + vertex_count, sizeof(unsigned int));
     if (block == NULL)
         return MESHFIX_ERROR_OUT_OF_MEMORY;
     MESHFIX_MEMSET(&w, 0, sizeof(w));
@@ -8246,13 +8280,8 @@ MESHFIX_API meshfix_result meshfix_weld(unsigned int *remap, const void *positio
     /* a hair wider than the tolerance, so rounding in the division never
        puts two vertices within it more than one cell apart */
     w.cell = (double)tolerance * (1.0 + 1e-9);
-    w.mask = buckets - 1;
-    w.bucket_end = block;
-    w.order = block + buckets;
-    w.home = w.order + vertex_count;
-    w.rep_head = w.home + vertex_count;
-    w.rep_next = w.rep_head + vertex_count;
-    result = w.rep_next + vertex_count;
+    meshfix__carve_welder(&w, block, vertex_count, buckets);
+    result = block + words;
     unique = meshfix__weld_run(&w, vertex_count, (double)tolerance, result);
     MESHFIX_MEMCPY(remap, result, vertex_count * sizeof(unsigned int));
     if (unique_count != NULL)

@@ -1013,13 +1013,15 @@ static void test_policy_info(void)
 /* The options are resolved and checked whole before any index is read:
    a bad option is refused as such even where the indices are bad too
    (an index out of range, a count that is no multiple of 3), and
-   meshfix_scratch_size refuses it the same way (0). */
+   meshfix_scratch_size (0) and meshfix_weld refuse it the same way. */
 static void test_options_before_indices(void)
 {
     static const unsigned int bad_indices[] = {0, 2, 1, 0, 1, 99};
     meshfix_options o;
     meshfix_report r;
     meshfix_check_failure why;
+    unsigned int remap[4];
+    size_t unique = 0;
     int k;
     for (k = 0; k < 4; ++k) {
         memset(&o, 0, sizeof(o));
@@ -1039,11 +1041,14 @@ static void test_options_before_indices(void)
         CHECK(!meshfix_check(bad_indices, 6, tetra_positions, 4, 12, 0, &o, &why));
         CHECK_EQ(why.result, MESHFIX_ERROR_INVALID_ARGUMENT);
         CHECK_EQ(meshfix_scratch_size(6, 4, &o), 0);
+        CHECK_EQ(meshfix_weld(remap, tetra_positions, 4, 12, 0.0f, &o, &unique), MESHFIX_ERROR_INVALID_ARGUMENT);
     }
     memset(&o, 0, sizeof(o));
     CHECK_EQ(meshfix_orient(NULL, bad_indices, 6, tetra_positions, 4, 12, &o, &r, NULL),
              MESHFIX_ERROR_INDEX_OUT_OF_RANGE);
     CHECK(meshfix_scratch_size(6, 4, &o) > 0);
+    CHECK_EQ(meshfix_weld(remap, tetra_positions, 4, 12, 0.0f, &o, &unique), MESHFIX_OK);
+    CHECK_EQ(unique, 4);
 }
 
 /* meshfix_doubtful_below is the bar the report counts by: a patch just
