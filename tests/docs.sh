@@ -92,15 +92,21 @@ options_documented() {
     done
     [ "$ok" -eq 1 ] && echo "$n options: $(tr '\n' ' ' <"$out/help_options.txt")"
 }
-if options_documented >"$out/options.log" 2>&1; then
-    npass=$((npass + 1))
-    echo "ok   docs: every option the tool takes is in --help, and every one in --help is in README.md's table ($(sed -n 's/ options:.*//p' "$out/options.log") options)"
-else
-    nfail=$((nfail + 1))
-    echo "FAIL docs: the tool's options, --help and README.md's table disagree"
-    sed 's/^/    /' "$out/options.log" | head -20
-    failed=1
-fi
+# part NAME SAYS_OK SAYS_FAIL: runs the function NAME into a log; passes
+# when it returns 0, saying SAYS_OK with "%s" as the log's first line.
+part() {
+    if "$1" >"$out/$1.log" 2>&1; then
+        npass=$((npass + 1))
+        echo "ok   docs: $(printf "$2" "$(head -n 1 "$out/$1.log")")"
+    else
+        nfail=$((nfail + 1))
+        echo "FAIL docs: $3"
+        sed 's/^/    /' "$out/$1.log" | head -20
+        failed=1
+    fi
+}
+part options_documented "every option the tool takes is in --help, and every one in --help is in README.md's table (%s)" \
+    "the tool's options, --help and README.md's table disagree"
 # The policies the tool takes (its error for an unknown one lists them, from
 # meshfix_policy_info) are README.md's --policy row, in the header's order.
 policies_documented() {
@@ -109,15 +115,8 @@ policies_documented() {
     readme=$(sed -n 's/^| `--policy P` | \(.*\) |$/\1/p' README.md | grep -oE '`[a-z]+`' | tr -d '`' | paste -sd, -)
     [ -n "$tool" ] && [ "$tool" = "$readme" ] && echo "$tool" || { echo "the tool: $tool; README.md: $readme"; return 1; }
 }
-if policies_documented >"$out/policies.log" 2>&1; then
-    npass=$((npass + 1))
-    echo "ok   docs: README.md's --policy row names the tool's policies, the header's ($(cat "$out/policies.log"))"
-else
-    nfail=$((nfail + 1))
-    echo "FAIL docs: README.md's --policy row and the tool's policies disagree"
-    sed 's/^/    /' "$out/policies.log"
-    failed=1
-fi
+part policies_documented "README.md's --policy row names the tool's policies, the header's (%s)" \
+    "README.md's --policy row and the tool's policies disagree"
 if [ "$count" -lt 8 ]; then
     nfail=$((nfail + 1))
     echo "FAIL docs: only $count snippets found (README.md has at least 7, the header 1)"
