@@ -7438,8 +7438,9 @@ MESHFIX__PRIVATE void meshfix__debug_check_orientation(const meshfix__mesh *m)
 /* ===== >>pipeline ===== */
 
 /* What each policy needs from the caller, and whether it decides by units,
-   trees and rays (the public list): the pipeline asks this table and
-   nothing else. */
+   trees and rays (the public list): the setup and the pipeline's choice
+   of stages ask this table; what a policy weighs is its own rule
+   (>>decide: meshfix__decide_patch, meshfix__decide_unit). */
 #define MESHFIX__POLICY_FACTS(name, text, line, positions, normals, distance, up, rays) \
     {text, line, positions, normals, distance, up, rays},
 static const meshfix_policy_facts meshfix__policies[MESHFIX_POLICY_COUNT] = {MESHFIX_POLICY_LIST(MESHFIX__POLICY_FACTS)};
@@ -7639,12 +7640,13 @@ MESHFIX__PRIVATE int meshfix__stride_valid(size_t stride)
 
 MESHFIX__PRIVATE int meshfix__options_valid(const meshfix_options *o, int policy)
 {
-    if (policy == MESHFIX_POLICY_SDF &&
+    if (policy >= 0 && meshfix__policies[policy].needs_distance &&
         (o->sdf.distance == NULL || (unsigned int)o->sdf.mode > (unsigned int)MESHFIX_SDF_PER_TRIANGLE))
         return 0;
     if (o->memory.alloc_func != NULL && o->memory.free_func == NULL)
         return 0;
-    if ((o->index_size != 2 && o->index_size != 4) || (o->position_size != 4 && o->position_size != 8) ||
+    if ((o->index_size != 0 && o->index_size != 2 && o->index_size != 4) ||
+        (o->position_size != 0 && o->position_size != 4 && o->position_size != 8) ||
         (unsigned int)o->topology > (unsigned int)MESHFIX_TOPOLOGY_WELD ||
         !(meshfix__is_finite(o->weld_tolerance) && o->weld_tolerance >= 0.0f))
         return 0;
@@ -7690,16 +7692,20 @@ MESHFIX__PRIVATE void meshfix__fill_defaults(meshfix_options *o)
 }
 
 /* The options a call runs with, resolved once: the caller's copied (NULL:
-   all zero), every default filled, then every field checked. Every stage
-   reads this copy and nothing else; no index has been read yet. */
+   all zero), every field checked as given, then every default filled.
+   Checked first: a NaN compares equal to 0 under -ffinite-math-only, and
+   must not become a default. Every stage reads this copy and nothing
+   else; no index has been read yet. */
 MESHFIX__PRIVATE int meshfix__resolve_options(const meshfix_options *caller, int policy, meshfix_options *o)
 {
     if (caller != NULL)
         *o = *caller;
     else
         MESHFIX_MEMSET(o, 0, sizeof(*o));
+    if (!meshfix__options_valid(o, policy))
+        return 0;
     meshfix__fill_defaults(o);
-    return meshfix__options_valid(o, policy);
+    return 1;
 }
 
 /* The policy a call runs (< 0: inspect): AUTO without positions is
@@ -7736,7 +7742,7 @@ typedef struct meshfix__call {
     void *destination;
     meshfix_options options;         /* resolved: meshfix__resolve_options */
     meshfix__input input;
-    int policy;                      /* < 0: inspect; as it runs (meshfix__resolve_policy) */
+    int policy;                      /* < 0: inspect; as asked (the run resolves it: meshfix__resolve_policy) */
     meshfix_report *report;
     meshfix_outputs *outputs;
     unsigned int requirements;       /* meshfix_check: explain the first that fails */
@@ -7777,8 +7783,10 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call)
     else
         MESHFIX_MEMSET(&outputs, 0, sizeof(outputs));
 
-    /* 1. validate the indices, before anything else reads them */
+    /* 1. validate the counts and the indices, then what the policy needs */
     result = meshfix__validate(in, &vertex_range, &plan);
+    if (result == MESHFIX_OK)
+        result = meshfix__resolve_policy(&policy, in, &options);
     if (result != MESHFIX_OK)
         return result;
     MESHFIX_MEMSET(&r, 0, sizeof(r));
@@ -8123,7 +8131,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__call_setup(meshfix__call *call, void *d
         !meshfix__describe_input(&call->input, indices, index_count, positions, vertex_count, stride, &call->options))
         return MESHFIX_ERROR_INVALID_ARGUMENT;
     call->policy = policy;
-    return meshfix__resolve_policy(&call->policy, &call->input, &call->options);
+    return MESHFIX_OK;
 }
 
 MESHFIX_API meshfix_result meshfix_orient(void *destination, const void *indices, size_t index_count,

@@ -47,7 +47,7 @@ typedef enum scene_size { SCENE_SMALL, SCENE_LARGE } scene_size;
 typedef struct scene_info {
     const char *name;
     int (*build)(scene *s, unsigned detail);
-    unsigned small, large; /* detail of the two sizes */
+    unsigned small, large; /* detail of the two sizes (0 and 0: a corpus file, one size) */
     const char *about;
 } scene_info;
 
