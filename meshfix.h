@@ -6110,17 +6110,19 @@ MESHFIX__PRIVATE void meshfix__verdict_from_weights(meshfix__unit *u, double sig
    weighing above decides; its margin is not a probability (a cut piece
    kept for lack of evidence has the margin of its consistent winding, 1,
    and is right as often as a coin). A logistic model over what was
-   weighed, relative to the side decided, and over what the other units
-   of the call say about the file gives one: its weights are fitted on the
+   weighed, relative to the side decided, over how much of its seams
+   found a partner, and over what the other units of the call say about
+   the file gives one: its weights are fitted on the
    tune halves of the project's corpora (tests/eval/fit.c, `make fit`) and
    the held-out halves' reliability is in the README. The decision never
    reads it; min_confidence and the doubtful count do. */
-#define MESHFIX__FEATURES 24
+#define MESHFIX__FEATURES 25
 static const double meshfix__confidence_weights[MESHFIX__FEATURES] = {
     /* fitted: begin */
-    4.6647, -1.7912, 0.7297, -0.5660, 0.6467, 0.4125, -1.3975, -1.2540,
-    0.4729, 3.0777, 8.5605, 0.2874, 0.1300, 7.1054, 1.1057, 1.3699,
-    -0.6749, 0.4276, 0.0738, -1.5736, -1.1354, 0.7050, -2.7461, -0.5299
+    4.8358, -1.7935, 0.7346, -0.5601, 0.6651, 0.3129, -1.3892, -1.2309,
+    0.4462, 3.0516, 8.5531, 0.2342, 0.0832, 7.1088, 1.0969, 1.3667,
+    -0.6754, 0.4328, 0.0746, -1.5735, -1.1534, 0.6864, -2.7567, -0.5344,
+    -0.1840
     /* fitted: end */
 };
 
@@ -6179,6 +6181,7 @@ MESHFIX__PRIVATE void meshfix__unit_features(const meshfix__unit *u, const meshf
     f[21] = (double)(u->margin < 0.5f);
     f[22] = f[4] * (1.0 - f[16]); /* turned where the rest of the file was not */
     f[23] = f[6] * f[21];          /* crossings that barely outweighed the winding as given */
+    f[24] = u->boundary > 0 ? u->unmatched / u->boundary : 0.0; /* share of its seams without a partner */
 }
 
 /* MESHFIX_FIT_ROW(patch, features, count): what tests/eval's programs
