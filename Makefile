@@ -156,10 +156,10 @@ test-only: $(B)/meshfix $(B)/demo_mesh $(B)/sdf_demo $(SUITES:%=$(B)/%) $(SUITES
       $(SUITES:%=$(B)/%_fast) $(B)/test_openmesh
 	@CC="$(CC)" CXX="$(CXX)" MAKE="$(MAKE)" bash tests/run_all.sh
 
-# `make quick`: the six C suites, plain builds, and the tool's own tests
-# (tests/quick.sh); `make quick WORD=cut` only the C tests whose names
-# contain "cut", as `build/test_NAME WORD` does for one suite
-quick: $(B)/meshfix $(B)/demo_mesh $(SUITES:%=$(B)/%)
+# `make check` (or `make quick`): the six C suites, plain builds, and the
+# tool's own tests (tests/quick.sh); `make check WORD=cut` only the C tests
+# whose names contain "cut", as `build/test_NAME WORD` does for one suite
+check quick: $(B)/meshfix $(B)/demo_mesh $(SUITES:%=$(B)/%)
 	@bash tests/quick.sh $(WORD)
 
 $(B)/trust_eval: tests/eval/trust_eval.c tests/eval/calibration.h tests/scenes.h $(HEADERS) | $(B)
@@ -206,5 +206,5 @@ blender-addon: $(B)/meshfix_blender.zip
 $(B)/meshfix_blender.zip: $(BLENDER_ADDON) | $(B)
 	sh blender/build.sh $@
 
-.PHONY: all demo sdf-demo blender-addon page test test-only quick bench fit fuzz clean FORCE
+.PHONY: all demo sdf-demo blender-addon page test test-only check quick bench fit fuzz clean FORCE
 FORCE:

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make quick: the six C suites (plain builds, already built by the
+# make check (make quick): the six C suites (plain builds, already built by the
 # Makefile) and the tool's own tests, with one closing line over them; a
 # contributor's loop between edits. `make test` runs these and everything
 # else (sanitizers, valgrind, the outputs of every build, OpenMesh, the
@@ -31,6 +31,6 @@ run() { # name, command...: adds the command's own "N passed, N failed" line
 for suite in test_meshfix test_sdf test_visibility test_hostile test_trust test_api; do
     run "$suite" build/$suite $word
 done
-[ -n "$word" ] || run "tests/test_cli.sh" bash tests/test_cli.sh
+[ -n "$word" ] || run "tests/test_cli.sh" env MESHFIX_CHECK=1 bash tests/test_cli.sh
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
