@@ -3576,6 +3576,19 @@ MESHFIX__PRIVATE unsigned int meshfix__lowest_bit(unsigned int mask)
 #endif
 }
 
+/* The highest set bit of a non-zero mask. */
+MESHFIX__PRIVATE unsigned int meshfix__highest_bit(unsigned int mask)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return 31u - (unsigned int)__builtin_clz(mask);
+#else
+    unsigned int i = 0;
+    while (mask >>= 1)
+        ++i;
+    return i;
+#endif
+}
+
 /* The node and block tests, in as many versions as there are SIMD paths.
    Each computes the same float operations in the same order as the scalar
    one, lane by lane, so every path gives the same bits (nothing here is
@@ -4022,11 +4035,13 @@ MESHFIX__INLINE_ALWAYS static unsigned int meshfix__next_node(const meshfix__wid
         return n->child[first];
     MESHFIX_ASSERT(*depth + MESHFIX__WIDE <= MESHFIX__BVH_STACK);
     if (!nearest_first) {
-        for (c = MESHFIX__WIDE - 1; c > first; --c)
-            if (inner & (1u << c)) {
-                stack_t[*depth] = t_min;
-                stack[(*depth)++] = n->child[c];
-            }
+        /* the last first, so the next in child order is on top: by their
+           bits (a test per child had the branch predictor guess each) */
+        for (; rest != 0; rest &= ~(1u << c)) {
+            c = meshfix__highest_bit(rest);
+            stack_t[*depth] = t_min;
+            stack[(*depth)++] = n->child[c];
+        }
         return n->child[first];
     }
     if ((rest & (rest - 1)) != 0)
