@@ -3656,6 +3656,19 @@ MESHFIX__PRIVATE unsigned int meshfix__lowest_bit(unsigned int mask)
 #endif
 }
 
+/* The highest set bit of a non-zero mask. */
+MESHFIX__PRIVATE unsigned int meshfix__highest_bit(unsigned int mask)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return 31u - (unsigned int)__builtin_clz(mask);
+#else
+    unsigned int i = 0;
+    while (mask >>= 1)
+        ++i;
+    return i;
+#endif
+}
+
 /* The node and block tests, in as many versions as there are SIMD paths.
    Each computes the same float operations in the same order as the scalar
    one, lane by lane, so every path gives the same bits (nothing here is
@@ -4016,38 +4029,48 @@ MESHFIX__INLINE_ALWAYS static int meshfix__take_hits(const meshfix__leaf_block *
 
 /* The leaves `leaves` (a bit per child) of node n against the ray. The
    children lie in slot order, so the lanes of consecutive leaves are
-   gathered into one test per block. Returns 1 when an ANY_HIT query is
-   answered. */
+   gathered into one test per block: the lanes of every leaf as bits of
+   one word from the first leaf's block on, then a test per block with a
+   lane set. A node whose leaves lie farther apart than the word (inner
+   children's slots between them) goes a leaf at a time. Returns 1 when an
+   ANY_HIT query is answered. */
 MESHFIX__INLINE_ALWAYS static int meshfix__test_leaves(const meshfix__bvh *b, const meshfix__wide *n,
                                                        unsigned int leaves, const meshfix__ray *r, meshfix__query *q,
                                                        float *best, meshfix__crossings *crossings,
                                                        meshfix__lanes_test test)
 {
-    unsigned int block = n->child[meshfix__lowest_bit(leaves)] / MESHFIX__WIDE, want = 0, hit;
+    unsigned int block = n->child[meshfix__lowest_bit(leaves)] / MESHFIX__WIDE, hit, rest, c, offset;
+    unsigned long long window = 0, lanes;
     float t[MESHFIX__WIDE];
     int zeros[MESHFIX__WIDE];
+    for (rest = leaves; rest != 0; rest &= rest - 1) {
+        c = meshfix__lowest_bit(rest);
+        offset = n->child[c] - MESHFIX__WIDE * block;
+        if (offset > 64 - MESHFIX__LEAF)
+            break;
+        window |= ((1ull << n->count[c]) - 1u) << offset;
+    }
     for (;;) {
-        unsigned int c = leaves != 0 ? meshfix__lowest_bit(leaves) : 0u, first = n->child[c];
-        unsigned int lanes = leaves != 0 ? ((1u << n->count[c]) - 1u) << first % MESHFIX__WIDE : 0u;
-        if (leaves == 0 || first / MESHFIX__WIDE != block) {
-            /* the block is complete: test it */
+        for (lanes = window; lanes != 0; lanes >>= MESHFIX__WIDE, ++block) {
+            unsigned int want = (unsigned int)lanes & 0xFFu;
+            if (want == 0)
+                continue;
             hit = test(r, &b->blocks[block], want, t, zeros);
             if (hit != 0 && meshfix__take_hits(&b->blocks[block], hit, t, zeros, q, best, crossings))
                 return 1;
-            if (leaves == 0)
-                return 0;
-            block = first / MESHFIX__WIDE;
-            want = 0;
         }
-        want |= lanes & 0xFFu;
-        if (lanes > 0xFFu) { /* the leaf runs on into the next block */
-            hit = test(r, &b->blocks[block], want, t, zeros);
-            if (hit != 0 && meshfix__take_hits(&b->blocks[block], hit, t, zeros, q, best, crossings))
-                return 1;
-            block++;
-            want = lanes >> MESHFIX__WIDE;
+        if (rest == 0)
+            return 0;
+        /* the leaves past the word: a window of their own */
+        block = n->child[meshfix__lowest_bit(rest)] / MESHFIX__WIDE;
+        window = 0;
+        for (; rest != 0; rest &= rest - 1) {
+            c = meshfix__lowest_bit(rest);
+            offset = n->child[c] - MESHFIX__WIDE * block;
+            if (offset > 64 - MESHFIX__LEAF)
+                break;
+            window |= ((1ull << n->count[c]) - 1u) << offset;
         }
-        leaves &= leaves - 1;
     }
 }
 
@@ -4092,11 +4115,13 @@ MESHFIX__INLINE_ALWAYS static unsigned int meshfix__next_node(const meshfix__wid
         return n->child[first];
     MESHFIX_ASSERT(*depth + MESHFIX__WIDE <= MESHFIX__BVH_STACK);
     if (!nearest_first) {
-        for (c = MESHFIX__WIDE - 1; c > first; --c)
-            if (inner & (1u << c)) {
-                stack_t[*depth] = t_min;
-                stack[(*depth)++] = n->child[c];
-            }
+        /* the last first, so the next in child order is on top: by their
+           bits (a test per child had the branch predictor guess each) */
+        for (; rest != 0; rest &= ~(1u << c)) {
+            c = meshfix__highest_bit(rest);
+            stack_t[*depth] = t_min;
+            stack[(*depth)++] = n->child[c];
+        }
         return n->child[first];
     }
     if ((rest & (rest - 1)) != 0)
