@@ -3190,13 +3190,8 @@ MESHFIX__PRIVATE void meshfix__morton_chunk(void *context, size_t chunk)
 
 MESHFIX__PRIVATE void meshfix__morton_phase(meshfix__morton_build *k, int phase, const meshfix_options *parallel)
 {
-    size_t chunk;
     k->phase = phase;
-    if (parallel != NULL && parallel->parallel_for != NULL)
-        parallel->parallel_for(meshfix__morton_chunk, k, MESHFIX__MORTON_CHUNKS, parallel->parallel_user);
-    else
-        for (chunk = 0; chunk < MESHFIX__MORTON_CHUNKS; ++chunk)
-            meshfix__morton_chunk(k, chunk);
+    meshfix__run_tasks(parallel, meshfix__morton_chunk, k, MESHFIX__MORTON_CHUNKS);
 }
 
 /* The cluster whose nodes started at `node` (as built): the last whose
