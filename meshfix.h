@@ -4022,32 +4022,59 @@ MESHFIX__INLINE_ALWAYS static int meshfix__take_hits(const meshfix__leaf_block *
     return 0;
 }
 
+/* Lanes [offset, offset + count) of a window of eight blocks, as two
+   words of four blocks' lanes each (C89 and C++98 have no 64-bit word);
+   count is at most MESHFIX__LEAF, offset + count at most 64. */
+MESHFIX__INLINE_ALWAYS static void meshfix__window_add(unsigned int window[2], unsigned int offset, unsigned int count)
+{
+    unsigned int mask = (1u << count) - 1u;
+    if (offset >= 32u) {
+        window[1] |= mask << (offset - 32u);
+        return;
+    }
+    window[0] |= mask << offset;
+    if (offset + count > 32u)
+        window[1] |= mask >> (32u - offset);
+}
+
+/* The window of the leaves in `rest` from `block` on, as far as it
+   reaches; returns the leaves past it. */
+MESHFIX__INLINE_ALWAYS static unsigned int meshfix__leaf_window(const meshfix__wide *n, unsigned int rest,
+                                                                unsigned int block, unsigned int window[2])
+{
+    unsigned int c, offset;
+    window[0] = window[1] = 0;
+    for (; rest != 0; rest &= rest - 1) {
+        c = meshfix__lowest_bit(rest);
+        offset = n->child[c] - MESHFIX__WIDE * block;
+        if (offset > 64 - MESHFIX__LEAF)
+            break;
+        meshfix__window_add(window, offset, n->count[c]);
+    }
+    return rest;
+}
+
 /* The leaves `leaves` (a bit per child) of node n against the ray. The
    children lie in slot order, so the lanes of consecutive leaves are
    gathered into one test per block: the lanes of every leaf as bits of
-   one word from the first leaf's block on, then a test per block with a
-   lane set. A node whose leaves lie farther apart than the word (inner
-   children's slots between them) goes a leaf at a time. Returns 1 when an
-   ANY_HIT query is answered. */
+   one window of eight blocks from the first leaf's block on, then a test
+   per block with a lane set. A node whose leaves lie farther apart than
+   the window (inner children's slots between them) takes a window more.
+   Returns 1 when an ANY_HIT query is answered. */
 MESHFIX__INLINE_ALWAYS static int meshfix__test_leaves(const meshfix__bvh *b, const meshfix__wide *n,
                                                        unsigned int leaves, const meshfix__ray *r, meshfix__query *q,
                                                        float *best, meshfix__crossings *crossings,
                                                        meshfix__lanes_test test)
 {
-    unsigned int block = n->child[meshfix__lowest_bit(leaves)] / MESHFIX__WIDE, hit, rest, c, offset;
-    unsigned long long window = 0, lanes;
+    unsigned int block = n->child[meshfix__lowest_bit(leaves)] / MESHFIX__WIDE, hit, rest, window[2];
     float t[MESHFIX__WIDE];
     int zeros[MESHFIX__WIDE];
-    for (rest = leaves; rest != 0; rest &= rest - 1) {
-        c = meshfix__lowest_bit(rest);
-        offset = n->child[c] - MESHFIX__WIDE * block;
-        if (offset > 64 - MESHFIX__LEAF)
-            break;
-        window |= ((1ull << n->count[c]) - 1u) << offset;
-    }
+    rest = meshfix__leaf_window(n, leaves, block, window);
     for (;;) {
-        for (lanes = window; lanes != 0; lanes >>= MESHFIX__WIDE, ++block) {
-            unsigned int want = (unsigned int)lanes & 0xFFu;
+        for (; (window[0] | window[1]) != 0; ++block) {
+            unsigned int want = window[0] & 0xFFu;
+            window[0] = (window[0] >> 8) | (window[1] << 24);
+            window[1] >>= 8;
             if (want == 0)
                 continue;
             hit = test(r, &b->blocks[block], want, t, zeros);
@@ -4056,16 +4083,9 @@ MESHFIX__INLINE_ALWAYS static int meshfix__test_leaves(const meshfix__bvh *b, co
         }
         if (rest == 0)
             return 0;
-        /* the leaves past the word: a window of their own */
+        /* the leaves past the window: a window of their own */
         block = n->child[meshfix__lowest_bit(rest)] / MESHFIX__WIDE;
-        window = 0;
-        for (; rest != 0; rest &= rest - 1) {
-            c = meshfix__lowest_bit(rest);
-            offset = n->child[c] - MESHFIX__WIDE * block;
-            if (offset > 64 - MESHFIX__LEAF)
-                break;
-            window |= ((1ull << n->count[c]) - 1u) << offset;
-        }
+        rest = meshfix__leaf_window(n, rest, block, window);
     }
 }
 
