@@ -754,6 +754,7 @@ typedef struct meshfix__input {
 
 typedef struct meshfix__plan {
     size_t mate, work, tri_bits, vertex_work, patch_start, patch_link, patch_bits;
+    size_t queue, tri_patch, component_bits; /* inside `work`, once the edges are linked */
     size_t corners, remap, weld, points; /* the input stage's (empty when not needed) */
     size_t weld_buckets;
     size_t total;
@@ -812,6 +813,17 @@ MESHFIX__PRIVATE size_t meshfix__welder_words(size_t vertices, size_t buckets)
    vertex until its bucket links it, and groups patches by component at
    the end. On machines where a fresh page costs microseconds, these bytes
    are most of the time. */
+/* What `work` (3 words per triangle and 16) holds once the edges are
+   linked: the triangles in patch order, each triangle's patch, then a
+   byte per component. */
+MESHFIX__PRIVATE int meshfix__carve_work(meshfix__plan *plan, size_t triangle_count)
+{
+    plan->queue = plan->work;
+    plan->tri_patch = plan->queue + 4 * triangle_count;
+    plan->component_bits = plan->tri_patch + 4 * triangle_count;
+    return 1;
+}
+
 MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count,
                                         const meshfix__input *in)
 {
@@ -840,7 +852,8 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
            meshfix__add_size(&total, triangle_count + 1, 4, &plan->patch_start) &&
            meshfix__add_size(&total, triangle_count, 4, &plan->patch_link) &&
            meshfix__add_size(&total, triangle_count, 1, &plan->patch_bits) &&
-           meshfix__add_size(&total, 0, 1, &plan->total) && (plan->total = total + 16) > total;
+           meshfix__add_size(&total, 0, 1, &plan->total) && (plan->total = total + 16) > total &&
+           meshfix__carve_work(plan, triangle_count);
 }
 
 MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_memory_options *a, size_t count, size_t size)
@@ -6691,6 +6704,8 @@ MESHFIX__PRIVATE void meshfix__patch_unit(const meshfix__patch_sums *s, meshfix_
    gradient's vote over the patch. UP: the lean of its area-weighted normal
    along the axis (none for a closed shell: zero up to rounding). NORMALS:
    the caller's normals. The rest were decided per unit before. */
+#define MESHFIX__UP_LEAST 1e-6     /* UP: a smaller lean is a closed shell's rounding */
+#define MESHFIX__NORMALS_LEAST 0.05 /* NORMALS: the least mean agreement of the normals that decides */
 MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, unsigned int p, int policy,
                                            const meshfix__patch_sums *s, double sigma, meshfix__unit *u)
 {
@@ -6708,11 +6723,11 @@ MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, unsigned int
         up[0] = (double)o->up[0], up[1] = (double)o->up[1], up[2] = (double)o->up[2];
         length = MESHFIX_SQRT(meshfix__dot3(up, up));
         u->mean = s->area > 0 ? meshfix__dot3(s->normal, up) / length / s->area : 0.0;
-        meshfix__verdict_follow(u, sigma, 1e-6);
+        meshfix__verdict_follow(u, sigma, MESHFIX__UP_LEAST);
     } else if (policy == MESHFIX_POLICY_NORMALS) {
         u->mean = s->normals_area > 0 ? s->normals / s->normals_area : 0.0;
         u->kind = MESHFIX_EVIDENCE_NORMALS;
-        meshfix__verdict_follow(u, sigma, 0.05);
+        meshfix__verdict_follow(u, sigma, MESHFIX__NORMALS_LEAST);
     } else {
         /* MAJORITY; AUTO and OUTWARD on one closed shell alone: its volume */
         u->kind = MESHFIX_EVIDENCE_NONE;
@@ -6733,13 +6748,16 @@ MESHFIX__PRIVATE void meshfix__decide_patch(const meshfix__mesh *m, unsigned int
     }
 }
 
-/* AUTO and OUTWARD weigh each unit's evidence against its prior. */
+/* AUTO and OUTWARD weigh each unit's evidence against its prior; where
+   no geometric vote was significant, the unit is said to be decided by the
+   caller's normals when they agree this much either way. */
+#define MESHFIX__NORMALS_DECIDE 0.1
 MESHFIX__PRIVATE void meshfix__decide_unit(meshfix__unit *u, double sigma)
 {
     meshfix__verdict_from_weights(u, sigma);
     if (!meshfix__significant(u, sigma)) {
-        u->kind = u->normals_area > 0 && MESHFIX_FABS(u->normals / u->normals_area) >= 0.1 ? MESHFIX_EVIDENCE_NORMALS
-                                                                                             : MESHFIX_EVIDENCE_NONE;
+        int by_normals = u->normals_area > 0 && MESHFIX_FABS(u->normals / u->normals_area) >= MESHFIX__NORMALS_DECIDE;
+        u->kind = by_normals ? MESHFIX_EVIDENCE_NORMALS : MESHFIX_EVIDENCE_NONE;
     }
 }
 
@@ -7504,9 +7522,9 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
     m->stride = in->stride;
     m->mate = (unsigned int *)(void *)(block + plan->mate);
     m->work = (unsigned int *)(void *)(block + plan->work);
-    m->queue = m->work;
-    m->tri_patch = m->queue + m->triangle_count;
-    m->component_bits = (unsigned char *)(m->queue + 2 * m->triangle_count);
+    m->queue = (unsigned int *)(void *)(block + plan->queue);
+    m->tri_patch = (unsigned int *)(void *)(block + plan->tri_patch);
+    m->component_bits = block + plan->component_bits;
     m->tri_bits = (unsigned short *)(void *)(block + plan->tri_bits);
     m->vertex_work = (unsigned int *)(void *)(block + plan->vertex_work);
     m->patch_start = (unsigned int *)(void *)(block + plan->patch_start);
