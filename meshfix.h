@@ -807,23 +807,22 @@ MESHFIX__PRIVATE size_t meshfix__welder_words(size_t vertices, size_t buckets)
     return buckets + 4 * vertices;
 }
 
+/* What `work` (3 words per triangle and 16) holds once the edges are
+   linked: the triangles in patch order, each triangle's patch, then a
+   byte per component. */
+MESHFIX__PRIVATE void meshfix__carve_work(meshfix__plan *plan, size_t triangle_count)
+{
+    plan->queue = plan->work;
+    plan->tri_patch = plan->queue + 4 * triangle_count;
+    plan->component_bits = plan->tri_patch + 4 * triangle_count;
+}
+
 /* One block holds every array. `work` holds the edge buckets, then the
    duplicate table, then the union-find parents, which become patch ids,
    and each patch's list of triangles. `mate` holds each half-edge's higher
    vertex until its bucket links it, and groups patches by component at
    the end. On machines where a fresh page costs microseconds, these bytes
    are most of the time. */
-/* What `work` (3 words per triangle and 16) holds once the edges are
-   linked: the triangles in patch order, each triangle's patch, then a
-   byte per component. */
-MESHFIX__PRIVATE int meshfix__carve_work(meshfix__plan *plan, size_t triangle_count)
-{
-    plan->queue = plan->work;
-    plan->tri_patch = plan->queue + 4 * triangle_count;
-    plan->component_bits = plan->tri_patch + 4 * triangle_count;
-    return 1;
-}
-
 MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range, size_t triangle_count,
                                         const meshfix__input *in)
 {
@@ -841,19 +840,21 @@ MESHFIX__PRIVATE int meshfix__make_plan(meshfix__plan *plan, size_t vertex_range
     plan->weld_buckets = buckets;
     if (joined != 0 && welder == 0)
         return 0;
-    return meshfix__add_size(&total, own_corners, 4, &plan->corners) &&
-           meshfix__add_size(&total, joined, 4, &plan->remap) &&
-           meshfix__add_size(&total, welder, 4, &plan->weld) &&
-           meshfix__add_size(&total, points, 3 * sizeof(float), &plan->points) &&
-           meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
-           meshfix__add_size(&total, half_edges + 16, 4, &plan->work) &&
-           meshfix__add_size(&total, triangle_count, 2, &plan->tri_bits) &&
-           meshfix__add_size(&total, vertex_range + 1, 4, &plan->vertex_work) &&
-           meshfix__add_size(&total, triangle_count + 1, 4, &plan->patch_start) &&
-           meshfix__add_size(&total, triangle_count, 4, &plan->patch_link) &&
-           meshfix__add_size(&total, triangle_count, 1, &plan->patch_bits) &&
-           meshfix__add_size(&total, 0, 1, &plan->total) && (plan->total = total + 16) > total &&
-           meshfix__carve_work(plan, triangle_count);
+    if (!(meshfix__add_size(&total, own_corners, 4, &plan->corners) &&
+          meshfix__add_size(&total, joined, 4, &plan->remap) &&
+          meshfix__add_size(&total, welder, 4, &plan->weld) &&
+          meshfix__add_size(&total, points, 3 * sizeof(float), &plan->points) &&
+          meshfix__add_size(&total, half_edges, 4, &plan->mate) &&
+          meshfix__add_size(&total, half_edges + 16, 4, &plan->work) &&
+          meshfix__add_size(&total, triangle_count, 2, &plan->tri_bits) &&
+          meshfix__add_size(&total, vertex_range + 1, 4, &plan->vertex_work) &&
+          meshfix__add_size(&total, triangle_count + 1, 4, &plan->patch_start) &&
+          meshfix__add_size(&total, triangle_count, 4, &plan->patch_link) &&
+          meshfix__add_size(&total, triangle_count, 1, &plan->patch_bits) &&
+          meshfix__add_size(&total, 0, 1, &plan->total) && (plan->total = total + 16) > total))
+        return 0;
+    meshfix__carve_work(plan, triangle_count);
+    return 1;
 }
 
 MESHFIX__PRIVATE void *meshfix__allocate(const meshfix_memory_options *a, size_t count, size_t size)
