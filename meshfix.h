@@ -4292,6 +4292,7 @@ MESHFIX__PRIVATE unsigned int meshfix__boxes_around(const meshfix__node *nodes, 
 
 typedef struct meshfix__unit {
     double kept, reversed;     /* area (count without positions) facing the frame's way as given, and against */
+    double prior_kept, prior_reversed; /* the same, each patch weighing the square root of its area (meshfix__add_prior) */
     double normals;            /* the caller's normals: sum of area * (+1 along, -1 against the frame) */
     double normals_area;       /* area of triangles with a usable normal */
     double area, volume;       /* volume in the frame, about the unit's first vertex */
@@ -5705,6 +5706,24 @@ MESHFIX__PRIVATE void meshfix__number_units(meshfix__geometry *g, meshfix__merge
 
 /* ===== >>shells ===== */
 
+/* The prior is the winding as given, and a unit's patches are its votes:
+   a patch is one decision of whoever wound it (one face of a CAD export,
+   one piece of a cut), whatever its area. By area, a unit of one large
+   piece and one small one follows the large piece's coin; by count, a
+   sliver outvotes a face. Each patch votes with the square root of its
+   area, a length;
+   chosen on the tune halves (models: cut256-gap 98.48% by area, 98.98% at
+   0.5, 98.97% by count; cut256-jitter 99.25 / 99.25 / 99.22; assets and
+   STL unchanged). Inside a patch the votes stay by area: there a flood
+   fill joined the triangles, and the ones wound against it are the
+   exporter's slips. */
+MESHFIX__PRIVATE void meshfix__add_prior(meshfix__unit *u, double kept, double reversed)
+{
+    double total = kept + reversed, scale = total > 0 ? 1.0 / MESHFIX_SQRT(total) : 0.0;
+    u->prior_kept += scale * kept;
+    u->prior_reversed += scale * reversed;
+}
+
 /* What each unit adds up to: its area facing each way as given, the
    caller's normals, its volume, its box; whether it is closed. Volumes are
    taken about one point per unit (its first vertex), so patches that only
@@ -5808,6 +5827,7 @@ MESHFIX__PRIVATE void meshfix__sum_units(meshfix__geometry *g)
         meshfix__empty_box(g->units[u].box);
     for (p = 0; p < m->patch_count; ++p) {
         meshfix__unit *x = &g->units[g->patch_unit[p]];
+        double kept = x->kept, reversed = x->reversed;
         for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
             unsigned int t = m->queue[i];
             if (!x->has_origin && meshfix__has_geometry(m, t)) {
@@ -5817,6 +5837,7 @@ MESHFIX__PRIVATE void meshfix__sum_units(meshfix__geometry *g)
             }
             meshfix__sum_unit_triangle(g, t, x->origin, x);
         }
+        meshfix__add_prior(x, x->kept - kept, x->reversed - reversed);
     }
     /* the frame is monotonic: the box of the corners' images is the image
        of their box */
@@ -6141,7 +6162,7 @@ MESHFIX__PRIVATE void meshfix__anchor_normals(const meshfix__geometry *g, meshfi
    a tie keeps. Confidence is the bound on the side decided, up to 1. */
 MESHFIX__PRIVATE void meshfix__weigh(const meshfix__unit *u, double sigma, double *low, double *high, int *majority)
 {
-    double total = u->kept + u->reversed, p = total > 0 ? (u->kept - u->reversed) / total : 0.0;
+    double total = u->prior_kept + u->prior_reversed, p = total > 0 ? (u->prior_kept - u->prior_reversed) / total : 0.0;
     double n = u->normals_area > 0 ? u->normals / u->normals_area : 0.0, d;
     *majority = p < 0 ? -1 : 1;
     d = (p < 0 ? -p : p) * (u->reversed_prior ? -1.0 : 1.0) + MESHFIX__WEIGHT_NORMALS * n * *majority +
@@ -6173,10 +6194,10 @@ MESHFIX__PRIVATE void meshfix__verdict_from_weights(meshfix__unit *u, double sig
 #define MESHFIX__FEATURES 25
 static const double meshfix__confidence_weights[MESHFIX__FEATURES] = {
     /* fitted: begin */
-    4.8358, -1.7935, 0.7346, -0.5601, 0.6651, 0.3129, -1.3892, -1.2309,
-    0.4462, 3.0516, 8.5531, 0.2342, 0.0832, 7.1088, 1.0969, 1.3667,
-    -0.6754, 0.4328, 0.0746, -1.5735, -1.1534, 0.6864, -2.7567, -0.5344,
-    -0.1840
+    4.2756, -1.0831, 0.7596, -0.5203, 0.6918, 0.2996, -1.2360, -1.3317,
+    0.5284, 2.8330, 8.2248, 0.2318, 0.0721, 7.1678, 1.0488, 1.1615,
+    -0.6353, 0.4605, -0.1489, -1.5150, -1.1339, 1.2908, -2.6789, -1.0850,
+    -0.1731
     /* fitted: end */
 };
 
@@ -6271,7 +6292,7 @@ MESHFIX__PRIVATE int meshfix__could_turn(const meshfix__unit *u, double w)
     int majority;
     probe.weight = w;
     probe.error = 0;
-    probe.mean = u->kept >= u->reversed ? -1.0 : 1.0; /* all of it against the majority */
+    probe.mean = u->prior_kept >= u->prior_reversed ? -1.0 : 1.0; /* all of it against the majority */
     meshfix__weigh(&probe, 0.0, &low, &high, &majority);
     return high < 0;
 }
@@ -6614,7 +6635,7 @@ MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g
     unsigned int u, count = 0;
     for (u = 0; u < g->unit_count; ++u) {
         const meshfix__unit *x = &g->units[u];
-        int majority = x->kept >= x->reversed ? 1 : -1;
+        int majority = x->prior_kept >= x->prior_reversed ? 1 : -1;
         double normals = x->normals_area > 0 ? x->normals / x->normals_area : 0.0;
         if (x->kind != MESHFIX_EVIDENCE_VOLUME || !meshfix__significant(x, g->sigma))
             continue;
@@ -6693,8 +6714,8 @@ MESHFIX__PRIVATE void meshfix__verdict_follow(meshfix__unit *u, double sigma, do
 MESHFIX__PRIVATE void meshfix__patch_unit(const meshfix__patch_sums *s, meshfix__unit *u)
 {
     MESHFIX_MEMSET(u, 0, sizeof(*u));
-    u->kept = s->weight_kept;
-    u->reversed = s->weight_reversed;
+    u->kept = u->prior_kept = s->weight_kept;
+    u->reversed = u->prior_reversed = s->weight_reversed;
     u->normals = s->normals;
     u->normals_area = s->normals_area;
     u->area = s->area;
@@ -7056,6 +7077,8 @@ MESHFIX__PRIVATE void meshfix__visibility_verdicts(meshfix__geometry *g, meshfix
             meshfix__unit *x = &g->units[p], *r = &g->units[root];
             r->kept += parity ? x->reversed : x->kept;
             r->reversed += parity ? x->kept : x->reversed;
+            r->prior_kept += parity ? x->prior_reversed : x->prior_kept;
+            r->prior_reversed += parity ? x->prior_kept : x->prior_reversed;
             samples[root] += samples[p];
         }
     }
@@ -7067,6 +7090,8 @@ MESHFIX__PRIVATE void meshfix__visibility_verdicts(meshfix__geometry *g, meshfix
         if (merge->turn[p]) {
             double x = r->kept;
             r->kept = r->reversed, r->reversed = x;
+            x = r->prior_kept;
+            r->prior_kept = r->prior_reversed, r->prior_reversed = x;
         }
         m_f = merge->front[p], m_b = merge->back[p];
         r->normals = r->normals_area = 0;
