@@ -313,7 +313,8 @@ typedef struct meshfix_visibility_options {
        1048576, and for AUTO and OUTWARD 1048576, which they draw on only
        until each verdict is settled). Coherence:
        boundary edges of other patches closer than coherence_distance (of
-       the longest box side, default 0.02). The paper's merge thresholds:
+       the longest box side, default 0.02) or a twentieth of the edge's
+       own length, whichever is more. The paper's merge thresholds:
        c0 (default 0.5), eps (0.02), kv (1.5). */
     size_t rays;
     unsigned int min_samples;
@@ -4807,6 +4808,18 @@ MESHFIX__PRIVATE int meshfix__cells_usable(const double lo[3], const double hi[3
    to search that grid: such segments (the long edges of a box cut beside
    a finely meshed part) get a grid of their own, a second pass with
    cells as wide as they are long. cell 0: none is. */
+/* How far a segment looks for its partner: coherence_distance, or a
+   twentieth of its own length when that is more. A gap is small or large
+   next to the edges it separates: a CAD face three units wide whose seams
+   opened by a tenth is still one surface, though a tenth is more than the
+   scene's reach (a box around a fine hollow, cut so: its faces found no
+   partners, it counted as open, and the hollow inside it was turned out). */
+#define MESHFIX__REACH_PER_LENGTH 0.05
+MESHFIX__PRIVATE double meshfix__segment_reach(const meshfix__segment *s, double reach)
+{
+    return meshfix__maxd(reach, MESHFIX__REACH_PER_LENGTH * s->length);
+}
+
 MESHFIX__PRIVATE int meshfix__too_long_for(double cell, const meshfix__segment *s, double reach)
 {
     meshfix__grid grid;
@@ -4814,7 +4827,7 @@ MESHFIX__PRIVATE int meshfix__too_long_for(double cell, const meshfix__segment *
     if (cell == 0)
         return 1;
     grid.cell = cell;
-    meshfix__segment_cells(&grid, s, reach, lo, hi);
+    meshfix__segment_cells(&grid, s, meshfix__segment_reach(s, reach), lo, hi);
     return !meshfix__cells_usable(lo, hi);
 }
 
@@ -5059,17 +5072,18 @@ MESHFIX__PRIVATE void meshfix__find_partners(const meshfix__partner_task *task, 
     unsigned int i;
     for (i = first; i < end; ++i) {
         meshfix__segment *s = &segments[i];
-        double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = reach;
+        double own = meshfix__segment_reach(s, reach);
+        double lo[3], hi[3], inner_lo[3], inner_hi[3], x, y, z, best = own;
         unsigned int best_id = MESHFIX__NONE, looked = 0;
         double middle[3];
         int ring, axis;
         if (task->beyond != 0 && !meshfix__too_long_for(task->beyond, s, reach))
             continue; /* found its partner in the first pass */
-        meshfix__segment_cells(grid, s, reach, lo, hi);
+        meshfix__segment_cells(grid, s, own, lo, hi);
         meshfix__segment_cells(grid, s, 0.0, inner_lo, inner_hi);
         /* a segment too long for the grid searches nothing: as if it found
            nothing within reach (others may still choose it) */
-        s->distance = reach;
+        s->distance = own;
         for (axis = 0; axis < 3; ++axis)
             middle[axis] = 0.5 * (s->p[axis] + s->q[axis]);
         if (!meshfix__cells_usable(lo, hi))
@@ -6194,10 +6208,10 @@ MESHFIX__PRIVATE void meshfix__verdict_from_weights(meshfix__unit *u, double sig
 #define MESHFIX__FEATURES 25
 static const double meshfix__confidence_weights[MESHFIX__FEATURES] = {
     /* fitted: begin */
-    4.2756, -1.0831, 0.7596, -0.5203, 0.6918, 0.2996, -1.2360, -1.3317,
-    0.5284, 2.8330, 8.2248, 0.2318, 0.0721, 7.1678, 1.0488, 1.1615,
-    -0.6353, 0.4605, -0.1489, -1.5150, -1.1339, 1.2908, -2.6789, -1.0850,
-    -0.1731
+    3.9140, -0.4629, 0.7194, 0.2515, 0.3455, 0.5074, -1.6731, -2.0259,
+    -0.2101, 2.6664, 7.9467, -0.7128, 1.2322, 7.2846, 0.8975, 0.2948,
+    -0.4111, 0.8005, -0.3123, -1.8910, -1.0344, 1.5766, -1.8035, -1.2012,
+    -0.2588
     /* fitted: end */
 };
 
