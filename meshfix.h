@@ -4516,6 +4516,38 @@ MESHFIX__PRIVATE void meshfix__add_vote(meshfix__votes *v, int vote)
     v->minus += (unsigned int)(vote < 0);
 }
 
+/* Every measurement samples the same way: votes a batch at a time, up to
+   `cap`, until `settled` says the votes so far answer what is asked. The
+   measurements differ only in their vote and their rule. */
+typedef int (*meshfix__vote_fn)(void *context, unsigned int index);
+typedef int (*meshfix__settled_fn)(void *context, const meshfix__votes *votes);
+
+MESHFIX__PRIVATE void meshfix__sample_until_settled(meshfix__votes *votes, unsigned int cap, meshfix__vote_fn vote,
+                                                   meshfix__settled_fn settled, void *context)
+{
+    unsigned int i;
+    MESHFIX_MEMSET(votes, 0, sizeof(*votes));
+    for (i = 0; i < cap; ++i) {
+        meshfix__add_vote(votes, vote(context, i));
+        if ((i + 1) % MESHFIX__BATCH == 0 && settled(context, votes))
+            break;
+    }
+}
+
+/* Whether the size of the mean vote is known to be at least `level` or
+   known to be less (within its bounds): either way, more votes would not
+   change which. */
+MESHFIX__PRIVATE int meshfix__level_known(const meshfix__votes *votes, double sigma, double level)
+{
+    double mean = MESHFIX_FABS(meshfix__vote_mean(votes)), error = meshfix__vote_error(votes);
+    return mean - sigma * error >= level || mean + sigma * error < level;
+}
+
+MESHFIX__PRIVATE int meshfix__level_reached(const meshfix__votes *votes, double sigma, double level)
+{
+    return MESHFIX_FABS(meshfix__vote_mean(votes)) - sigma * meshfix__vote_error(votes) >= level;
+}
+
 /* A side is inside when its ray crosses the surfaces asked about an odd
    number of times (or, for escape, hits anything). The pair votes for the
    frame when its front side is outside and its back side inside. */
@@ -5919,27 +5951,35 @@ MESHFIX__PRIVATE int meshfix__member_vote(const meshfix__geometry *g, unsigned i
     return meshfix__side_vote(inside[1], inside[0]);
 }
 
+typedef struct meshfix__member_sampling {
+    const meshfix__geometry *g;
+    unsigned int member, surface;
+} meshfix__member_sampling;
+
+MESHFIX__PRIVATE int meshfix__member_sample(void *context, unsigned int index)
+{
+    const meshfix__member_sampling *s = (const meshfix__member_sampling *)context;
+    return meshfix__member_vote(s->g, s->member, s->surface, index);
+}
+
+MESHFIX__PRIVATE int meshfix__member_settled(void *context, const meshfix__votes *votes)
+{
+    return meshfix__level_known(votes, ((const meshfix__member_sampling *)context)->g->sigma, MESHFIX__SIDE_CLEAR);
+}
+
 /* The side of member p's front, in its consistent frame: +1 out of the
-   surface of unit u, -1 into it, 0 when its crossings do not tell; samples
-   a batch at a time until that is settled. *samples gets their number. */
+   surface of unit u, -1 into it, 0 when its crossings do not tell.
+   *samples gets the number drawn. */
 MESHFIX__PRIVATE signed char meshfix__member_side(const meshfix__geometry *g, unsigned int p, unsigned int u,
                                                  unsigned int *samples)
 {
+    meshfix__member_sampling sampling;
     meshfix__votes votes;
-    unsigned int i;
-    double mean = 0, error = 1;
-    MESHFIX_MEMSET(&votes, 0, sizeof(votes));
-    for (i = 0; i < MESHFIX__MEMBER_SAMPLES; ++i) {
-        meshfix__add_vote(&votes, meshfix__member_vote(g, p, u, i));
-        if ((i + 1) % MESHFIX__BATCH != 0)
-            continue;
-        mean = MESHFIX_FABS(meshfix__vote_mean(&votes));
-        error = meshfix__vote_error(&votes);
-        if (mean - g->sigma * error >= MESHFIX__SIDE_CLEAR || mean + g->sigma * error < MESHFIX__SIDE_CLEAR)
-            break;
-    }
+    sampling.g = g, sampling.member = p, sampling.surface = u;
+    meshfix__sample_until_settled(&votes, MESHFIX__MEMBER_SAMPLES, meshfix__member_sample, meshfix__member_settled,
+                                  &sampling);
     *samples = votes.n;
-    if (!(mean - g->sigma * error >= MESHFIX__SIDE_CLEAR))
+    if (!meshfix__level_reached(&votes, g->sigma, MESHFIX__SIDE_CLEAR))
         return 0;
     return (signed char)(meshfix__vote_mean(&votes) > 0 ? 1 : -1);
 }
@@ -6351,35 +6391,58 @@ MESHFIX__PRIVATE int meshfix__sampled_enough(const meshfix__unit *u, double sigm
     return meshfix__significant(u, sigma) || MESHFIX_FABS(u->mean) + sigma * u->error < meshfix__significance_floor(u);
 }
 
-/* Samples evidence of one kind for unit u until meshfix__sampled_enough or
+/* A unit's measurement: a sample of one kind of evidence (nesting for
+   VOLUME, else both sides of a point), its unit described by the votes so
+   far (their mean times `sign`) for the rule that stops. */
+typedef struct meshfix__unit_sampling {
+    const meshfix__geometry *g;
+    meshfix__unit *u;
+    unsigned int index, kind, count;
+    const unsigned int *list;
+    double sign;
+} meshfix__unit_sampling;
+
+MESHFIX__PRIVATE int meshfix__unit_sample(void *context, unsigned int i)
+{
+    const meshfix__unit_sampling *s = (const meshfix__unit_sampling *)context;
+    if (s->kind == MESHFIX_EVIDENCE_VOLUME)
+        return meshfix__sample_nesting(s->g, s->index, i, s->list, s->count);
+    return meshfix__sample_sides(s->g, s->index, s->kind, i, s->list, s->count);
+}
+
+MESHFIX__PRIVATE void meshfix__describe_unit(const meshfix__unit_sampling *s, const meshfix__votes *votes)
+{
+    s->u->mean = s->sign * meshfix__vote_mean(votes);
+    s->u->error = meshfix__vote_error(votes);
+}
+
+/* The verdict settled (meshfix__sampled_enough), or unanimous past 8
+   batches: unanimous votes cannot move their mean, and more of them would
+   only settle a tie, which keeps anyway. */
+MESHFIX__PRIVATE int meshfix__verdict_settled(void *context, const meshfix__votes *votes)
+{
+    const meshfix__unit_sampling *s = (const meshfix__unit_sampling *)context;
+    meshfix__describe_unit(s, votes);
+    return meshfix__sampled_enough(s->u, s->g->sigma) ||
+           (votes->n >= 8 * MESHFIX__BATCH && (votes->plus == votes->n || votes->minus == votes->n));
+}
+
+/* Samples evidence of one kind for unit u until its verdict is settled or
    the cap is reached; the unit's mean (the votes' mean times `sign`),
    error and weight describe it. Returns the votes' mean. */
 MESHFIX__PRIVATE double meshfix__measure(const meshfix__geometry *g, unsigned int index, meshfix__unit *u,
                                         unsigned int kind, double weight, double sign, const unsigned int *list,
                                         unsigned int count, unsigned int cap)
 {
+    meshfix__unit_sampling sampling;
     meshfix__votes votes;
-    unsigned int i;
-    MESHFIX_MEMSET(&votes, 0, sizeof(votes));
+    sampling.g = g, sampling.u = u, sampling.index = index, sampling.kind = kind;
+    sampling.list = list, sampling.count = count, sampling.sign = sign;
     u->weight = weight;
     u->kind = (unsigned char)kind;
-    for (i = 0; i < cap; ++i) {
-        int vote = kind == MESHFIX_EVIDENCE_VOLUME ? meshfix__sample_nesting(g, index, i, list, count)
-                                               : meshfix__sample_sides(g, index, kind, i, list, count);
-        u->rays += kind == MESHFIX_EVIDENCE_VOLUME ? 1u : 2u;
-        meshfix__add_vote(&votes, vote);
-        if ((i + 1) % MESHFIX__BATCH != 0)
-            continue;
-        u->mean = sign * meshfix__vote_mean(&votes);
-        u->error = meshfix__vote_error(&votes);
-        /* unanimous votes cannot move their mean: past 8 batches more of
-           them would only settle a tie, which keeps anyway */
-        if (meshfix__sampled_enough(u, g->sigma) ||
-            (i + 1 >= 8 * MESHFIX__BATCH && (votes.plus == votes.n || votes.minus == votes.n)))
-            break;
-    }
-    u->mean = sign * meshfix__vote_mean(&votes);
-    u->error = meshfix__vote_error(&votes);
+    meshfix__sample_until_settled(&votes, cap, meshfix__unit_sample, meshfix__verdict_settled, &sampling);
+    u->rays += (kind == MESHFIX_EVIDENCE_VOLUME ? 1u : 2u) * (size_t)votes.n;
+    meshfix__describe_unit(&sampling, &votes);
     return meshfix__vote_mean(&votes);
 }
 
@@ -6437,27 +6500,28 @@ MESHFIX__PRIVATE int meshfix__crosses_a_shell(const meshfix__geometry *g, unsign
 
 /* A gapped unit is nearly closed when its own crossings say that one of
    its sides is inside and the other outside: their mean vote, at least
-   0.6 away from 0 within its bounds. Its sign then tells its outside. */
+   MESHFIX__GAP_CLOSED away from 0 within its bounds. Its sign then tells
+   its outside. */
+#define MESHFIX__GAP_CLOSED 0.6
+
+MESHFIX__PRIVATE int meshfix__gap_settled(void *context, const meshfix__votes *votes)
+{
+    return meshfix__level_known(votes, ((const meshfix__unit_sampling *)context)->g->sigma, MESHFIX__GAP_CLOSED);
+}
+
 MESHFIX__PRIVATE void meshfix__gap_evidence(const meshfix__geometry *g, unsigned int index, double total_area)
 {
     meshfix__unit *u = &g->units[index];
-    unsigned int i, cap = meshfix__ray_cap(g, u, total_area);
+    meshfix__unit_sampling sampling;
     meshfix__votes votes;
-    MESHFIX_MEMSET(&votes, 0, sizeof(votes));
-    for (i = 0; i < cap; ++i) {
-        meshfix__add_vote(&votes, meshfix__sample_sides(g, index, MESHFIX_EVIDENCE_PARITY, i, &index, 1));
-        u->rays += 2;
-        if ((i + 1) % MESHFIX__BATCH != 0)
-            continue;
-        u->mean = meshfix__vote_mean(&votes);
-        u->error = meshfix__vote_error(&votes);
-        if (MESHFIX_FABS(u->mean) - g->sigma * u->error >= 0.6 || MESHFIX_FABS(u->mean) + g->sigma * u->error < 0.6)
-            break;
-    }
-    u->mean = meshfix__vote_mean(&votes);
-    u->error = meshfix__vote_error(&votes);
-    u->closed = (unsigned char)(MESHFIX_FABS(u->mean) - g->sigma * u->error >= 0.6 ? MESHFIX__NEARLY_CLOSED
-                                                                                  : MESHFIX__OPEN);
+    sampling.g = g, sampling.u = u, sampling.index = index, sampling.kind = MESHFIX_EVIDENCE_PARITY;
+    sampling.list = &index, sampling.count = 1, sampling.sign = 1.0;
+    meshfix__sample_until_settled(&votes, meshfix__ray_cap(g, u, total_area), meshfix__unit_sample,
+                                  meshfix__gap_settled, &sampling);
+    u->rays += 2 * (size_t)votes.n;
+    meshfix__describe_unit(&sampling, &votes);
+    u->closed = (unsigned char)(meshfix__level_reached(&votes, g->sigma, MESHFIX__GAP_CLOSED) ? MESHFIX__NEARLY_CLOSED
+                                                                                           : MESHFIX__OPEN);
 }
 
 /* A closed or nearly closed unit faces out (positive volume, or the side
