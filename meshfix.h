@@ -471,7 +471,13 @@ typedef struct meshfix_report {
     size_t patches_doubtful;      /* confidence below 0.9 under AUTO, else 0.5 (or min_confidence when higher) */
     size_t triangles_doubtful;
     double area_doubtful;         /* of those patches; 0 without positions */
+    /* The mesh as given, what meshfix_inspect reports of it (for inspect
+       the same as edges_inconsistent, verdict, patches_inside_out and
+       signed_volume): one orient tells before and after. */
     size_t edges_inconsistent_before;
+    meshfix_verdict verdict_before;
+    size_t patches_inside_out_before;
+    double signed_volume_before;
     meshfix_mesh_facts mesh;
     meshfix_evidence_counts evidence;
 } meshfix_report;
@@ -7542,7 +7548,7 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         meshfix__patch_sums s;
         unsigned int turn = 0, bits = m->patch_bits[p];
         size_t flipped = 0;
-        double volume;
+        double volume, given;
         meshfix_component *out = meshfix__component_out(m, m->patch_link[p]);
         meshfix__sum_patch(m, p, &s);
         r->evidence.sdf_evaluations += s.sdf_evaluations;
@@ -7561,8 +7567,13 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
             r->patches_flipped += (size_t)(flipped != 0);
         }
         volume = policy < 0 ? s.volume_given : turn ? -s.volume_relative : s.volume_relative;
+        given = s.volume_given;
         if (!meshfix__is_closed_orientable(m, p))
-            volume = 0.0;
+            volume = given = 0.0;
+        r->signed_volume_before += given;
+        /* inside-out only means something for a patch wound one way throughout */
+        if (s.reversed == 0)
+            r->patches_inside_out_before += (size_t)(given < 0.0 && meshfix__volume_is_meaningful(given, s.area));
         /* a shell decided alone (the geometric stage counts its units) */
         if (policy >= 0 && !(bits & MESHFIX__PATCH_DECIDED) && volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area))
             r->evidence.shells_inward++;
@@ -7570,7 +7581,6 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
         r->mesh.area += s.area;
         r->mesh.signed_volume += volume;
         r->mesh.patches_closed += (size_t)!(bits & MESHFIX__PATCH_OPEN);
-        /* inside-out only means something for a patch wound one way throughout */
         if (policy >= 0 || s.reversed == 0)
             r->mesh.patches_inside_out += (size_t)(volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area));
         if (out != NULL)
@@ -7888,14 +7898,22 @@ MESHFIX__PRIVATE meshfix_result meshfix__resolve_policy(int *policy, const meshf
     return MESHFIX_OK;
 }
 
+/* inspect's verdict, of the mesh as given */
+MESHFIX__PRIVATE meshfix_verdict meshfix__verdict_before(const meshfix_report *r)
+{
+    if (r->mesh.components_non_orientable != 0)
+        return MESHFIX_VERDICT_NOT_ORIENTABLE;
+    return r->edges_inconsistent_before != 0  ? MESHFIX_VERDICT_INCONSISTENT
+           : r->patches_inside_out_before != 0 ? MESHFIX_VERDICT_INSIDE_OUT
+                                               : MESHFIX_VERDICT_CLEAN;
+}
+
 MESHFIX__PRIVATE meshfix_verdict meshfix__verdict(const meshfix_report *r, int policy)
 {
     if (r->mesh.components_non_orientable != 0)
         return MESHFIX_VERDICT_NOT_ORIENTABLE;
     if (policy < 0)
-        return r->mesh.edges_inconsistent != 0  ? MESHFIX_VERDICT_INCONSISTENT
-               : r->mesh.patches_inside_out != 0 ? MESHFIX_VERDICT_INSIDE_OUT
-                                                  : MESHFIX_VERDICT_CLEAN;
+        return meshfix__verdict_before(r);
     if (r->patches_doubtful != 0)
         return MESHFIX_VERDICT_DOUBTFUL;
     return r->triangles_flipped != 0 ? MESHFIX_VERDICT_REPAIRED : MESHFIX_VERDICT_CLEAN;
@@ -7998,6 +8016,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call)
     if (result == MESHFIX_OK) {
         r.mesh.vertices_joined = joined;
         r.verdict = meshfix__verdict(&r, policy);
+        r.verdict_before = meshfix__verdict_before(&r);
         if (call->destination != NULL && policy >= 0)
             meshfix__write_indices(&m, (unsigned char *)call->destination);
         meshfix__write_triangle_outputs(&m, policy);

@@ -122,7 +122,11 @@ export interface Report {
     patchesDoubtful: number;
     trianglesDoubtful: number;
     areaDoubtful: number;
+    /** the mesh as given: what inspect reports of it */
     edgesInconsistentBefore: number;
+    verdictBefore: Verdict;
+    patchesInsideOutBefore: number;
+    signedVolumeBefore: number;
     mesh: MeshFacts;
     evidence: EvidenceCounts;
 }

@@ -740,6 +740,17 @@ static void test_property_random_flips(void)
 /* Random index soups over a few vertices: mostly non-manifold and
    degenerate. The contract still holds, and the same call twice gives
    bit-identical results. */
+/* What orient says of the mesh as given is what inspect says of it. */
+static void check_before_is_inspect(const meshfix_report *orient, const meshfix_report *inspect)
+{
+    CHECK_EQ(orient->verdict_before, inspect->verdict);
+    CHECK_EQ(orient->edges_inconsistent_before, inspect->mesh.edges_inconsistent);
+    CHECK_EQ(orient->patches_inside_out_before, inspect->mesh.patches_inside_out);
+    CHECK(orient->signed_volume_before == inspect->mesh.signed_volume);
+    CHECK_EQ(inspect->verdict_before, inspect->verdict);
+    CHECK(inspect->signed_volume_before == inspect->mesh.signed_volume);
+}
+
 static void test_property_random_soups(void)
 {
     unsigned long long seed = 99;
@@ -758,6 +769,8 @@ static void test_property_random_soups(void)
         again = orient_checked(idx, 3 * triangles, p, vertices, 12, plain_policies[round % 4], &r2);
         CHECK(memcmp(out, again, 3 * triangles * sizeof(unsigned int)) == 0);
         CHECK(memcmp(&r, &r2, sizeof(r)) == 0);
+        CHECK_EQ(meshfix_inspect(idx, 3 * triangles, p, vertices, 12, NULL, &r2, NULL), MESHFIX_OK);
+        check_before_is_inspect(&r, &r2);
         CHECK(r.mesh.edges_inconsistent <= r.edges_inconsistent_before || r.mesh.components_non_orientable > 0);
         CHECK_EQ(r.mesh.edges, r.mesh.edges_boundary + r.mesh.edges_manifold + r.mesh.edges_non_manifold);
         CHECK(r.mesh.patches >= r.mesh.components);
@@ -874,6 +887,7 @@ static void test_real_models(void)
             CHECK_EQ(fixed.mesh.edges_inconsistent, fixed.mesh.edges_non_manifold);
             CHECK_EQ(fixed.mesh.components_non_orientable, 0);
             CHECK_EQ(fixed.mesh.patches, input.mesh.patches);
+            check_before_is_inspect(&fixed, &input);
             if (policy == MESHFIX_POLICY_OUTWARD)
                 CHECK_EQ(fixed.mesh.patches_inside_out, 0);
             if (input.mesh.edges_inconsistent == 0 && policy == MESHFIX_POLICY_MAJORITY)

@@ -25,7 +25,7 @@ const USES = {
         components: 'pointer', components_capacity: 'integer', patch_evidence: 'pointer',
         patch_evidence_capacity: 'integer',
     },
-    meshfix_report: { verdict: 'integer', 'mesh.patches': 'integer', 'mesh.components': 'integer' },
+    meshfix_report: { verdict: 'integer', verdict_before: 'integer', 'mesh.patches': 'integer', 'mesh.components': 'integer' },
     meshfix_component: { closed: 'integer', orientable: 'integer' },
     meshfix_check_failure: {
         result: 'integer', requirement: 'integer', count: 'integer', triangle: 'integer', edge: 'integer[2]', text: 'char[]',
@@ -475,6 +475,7 @@ function requirementBits(requirements) {
 function readReport(e, pointer) {
     const report = readStruct(e, 'meshfix_report', pointer);
     report.verdict = wasm.verdicts[report.verdict] || String(report.verdict);
+    report.verdictBefore = wasm.verdicts[report.verdictBefore] || String(report.verdictBefore);
     return report;
 }
 

@@ -143,7 +143,8 @@ export function buildNative() {
 
 export const NATIVE_FIELDS = ['verdict', 'trianglesFlipped', 'patchesFlipped', 'patchesDoubtful', 'trianglesDoubtful',
     'edgesInconsistentBefore', 'mesh.patches', 'mesh.edgesInconsistent', 'mesh.components',
-    'evidence.patchesByVolume', 'evidence.patchesByNormals', 'evidence.patchesKept'];
+    'evidence.patchesByVolume', 'evidence.patchesByNormals', 'evidence.patchesKept', 'verdictBefore',
+    'patchesInsideOutBefore'];
 export const VERDICT_NUMBERS = { clean: 0, repaired: 1, doubtful: 2, 'not-orientable': 3, inconsistent: 4, 'inside-out': 5 };
 
 // meshes: [{ indices: Uint32Array, positions: Float32Array, normals: Float32Array|null, policy }]
@@ -201,7 +202,7 @@ export function compareWithNative(result, native, label) {
         problems.push(`${label}: ${differ} triangles flipped differently (first: triangle ${first})`);
     for (const name of NATIVE_FIELDS) {
         let mine = field(result.report, name);
-        if (name === 'verdict')
+        if (name === 'verdict' || name === 'verdictBefore')
             mine = VERDICT_NUMBERS[mine];
         if (mine !== native.values[name])
             problems.push(`${label}: report.${name} ${mine} (WebAssembly) != ${native.values[name]} (native)`);

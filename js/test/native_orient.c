@@ -18,10 +18,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#define REPORT_VALUES 12
+#define REPORT_VALUES 14
 /* verdict, trianglesFlipped, patchesFlipped, patchesDoubtful, trianglesDoubtful,
    edgesInconsistentBefore, mesh.patches, mesh.edgesInconsistent, mesh.components,
-   evidence.patchesByVolume, evidence.patchesByNormals, evidence.patchesKept */
+   evidence.patchesByVolume, evidence.patchesByNormals, evidence.patchesKept,
+   verdictBefore, patchesInsideOutBefore */
 
 static int read_u32(FILE *f, unsigned int *v)
 {
@@ -99,6 +100,8 @@ int main(int argc, char **argv)
             values[9] = (double)report.evidence.patches_by_volume;
             values[10] = (double)report.evidence.patches_by_normals;
             values[11] = (double)report.evidence.patches_kept;
+            values[12] = (double)report.verdict_before;
+            values[13] = (double)report.patches_inside_out_before;
             meshfix_summary(&report, summary, sizeof(summary));
         }
         length = (unsigned int)strlen(summary);

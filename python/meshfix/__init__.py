@@ -155,7 +155,9 @@ class _EvidenceCounts(Structure):
 class _Report(Structure):
     _fields_ = [("verdict", c_int), ("triangles_flipped", c_size_t), ("patches_flipped", c_size_t),
                 ("patches_doubtful", c_size_t), ("triangles_doubtful", c_size_t), ("area_doubtful", c_double),
-                ("edges_inconsistent_before", c_size_t), ("mesh", _MeshFacts), ("evidence", _EvidenceCounts)]
+                ("edges_inconsistent_before", c_size_t), ("verdict_before", c_int),
+                ("patches_inside_out_before", c_size_t), ("signed_volume_before", c_double), ("mesh", _MeshFacts),
+                ("evidence", _EvidenceCounts)]
 
 
 class _CheckFailure(Structure):
@@ -404,14 +406,18 @@ class Report:
     patches_doubtful: int
     triangles_doubtful: int
     area_doubtful: float
-    edges_inconsistent_before: int
+    edges_inconsistent_before: int  # the mesh as given: what inspect reports of it
+    verdict_before: Verdict
+    patches_inside_out_before: int
+    signed_volume_before: float
     mesh: MeshFacts
     evidence: EvidenceCounts
 
     def to_dict(self):
-        """Plain types only (the verdict as its C text, e.g. "repaired"), for JSON."""
+        """Plain types only (the verdicts as their C text, e.g. "repaired"), for JSON."""
         d = dataclasses.asdict(self)
         d["verdict"] = str(self.verdict)
+        d["verdict_before"] = str(self.verdict_before)
         return d
 
 
@@ -419,18 +425,24 @@ def _fields(struct, kind):
     return kind(**{name: getattr(struct, name) for name, _ in struct._fields_})
 
 
+def _verdict(value):
+    try:
+        return Verdict(value)
+    except ValueError:
+        return value
+
+
 def _report(c_report):
     size = _summary(ctypes.byref(c_report), None, 0) + 1
     line = ctypes.create_string_buffer(size)
     _summary(ctypes.byref(c_report), line, size)
-    try:
-        verdict = Verdict(c_report.verdict)
-    except ValueError:
-        verdict = c_report.verdict
-    return Report(verdict=verdict, summary=line.value.decode(),
+    return Report(verdict=_verdict(c_report.verdict), summary=line.value.decode(),
                   triangles_flipped=c_report.triangles_flipped, patches_flipped=c_report.patches_flipped,
                   patches_doubtful=c_report.patches_doubtful, triangles_doubtful=c_report.triangles_doubtful,
                   area_doubtful=c_report.area_doubtful, edges_inconsistent_before=c_report.edges_inconsistent_before,
+                  verdict_before=_verdict(c_report.verdict_before),
+                  patches_inside_out_before=c_report.patches_inside_out_before,
+                  signed_volume_before=c_report.signed_volume_before,
                   mesh=_fields(c_report.mesh, MeshFacts), evidence=_fields(c_report.evidence, EvidenceCounts))
 
 

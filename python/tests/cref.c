@@ -56,6 +56,8 @@ static void print_report(const meshfix_report *r)
     printf("verdict=%d\nsummary=%s\n", (int)r->verdict, line);
     SIZE("", r, triangles_flipped) SIZE("", r, patches_flipped) SIZE("", r, patches_doubtful)
     SIZE("", r, triangles_doubtful) REAL("", r, area_doubtful) SIZE("", r, edges_inconsistent_before)
+    printf("verdict_before=%d\n", (int)r->verdict_before);
+    SIZE("", r, patches_inside_out_before) REAL("", r, signed_volume_before)
     SIZE("mesh.", m, triangles) SIZE("mesh.", m, triangles_degenerate) SIZE("mesh.", m, triangles_zero_area)
     SIZE("mesh.", m, triangles_duplicate) SIZE("mesh.", m, vertices_used) SIZE("mesh.", m, vertices_joined)
     SIZE("mesh.", m, vertices_non_finite) SIZE("mesh.", m, vertices_non_manifold) SIZE("mesh.", m, edges)

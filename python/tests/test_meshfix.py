@@ -21,9 +21,10 @@ from conftest import ROOT
 
 def flat(report):
     """The report as cref prints it: name -> text."""
-    out = {"verdict": str(int(report.verdict)), "summary": report.summary}
+    out = {"verdict": str(int(report.verdict)), "verdict_before": str(int(report.verdict_before)),
+           "summary": report.summary}
     for name in ("triangles_flipped", "patches_flipped", "patches_doubtful", "triangles_doubtful",
-                 "area_doubtful", "edges_inconsistent_before"):
+                 "area_doubtful", "edges_inconsistent_before", "patches_inside_out_before", "signed_volume_before"):
         out[name] = getattr(report, name)
     for group in ("mesh", "evidence"):
         for name, value in vars(getattr(report, group)).items():

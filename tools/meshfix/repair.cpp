@@ -80,6 +80,23 @@ void check_normals(const Unit &u, const Settings &s, UnitResult &r)
     }
 }
 
+/* What meshfix_inspect would report of the unit as given, from the
+   repair's report: the facts the repair does not change, and its record
+   of those it does. */
+meshfix_report as_given(const meshfix_report &after)
+{
+    meshfix_report before = {};
+    before.verdict = before.verdict_before = after.verdict_before;
+    before.edges_inconsistent_before = after.edges_inconsistent_before;
+    before.patches_inside_out_before = after.patches_inside_out_before;
+    before.signed_volume_before = after.signed_volume_before;
+    before.mesh = after.mesh;
+    before.mesh.edges_inconsistent = after.edges_inconsistent_before;
+    before.mesh.patches_inside_out = after.patches_inside_out_before;
+    before.mesh.signed_volume = after.signed_volume_before;
+    return before;
+}
+
 } // namespace
 
 UnitResult repair_unit(const Unit &u, const Settings &s)
@@ -88,10 +105,6 @@ UnitResult repair_unit(const Unit &u, const Settings &s)
     meshfix_options o = options_for(u, s);
     size_t triangles = u.indices.size() / 3, vertices = u.positions.size() / 3;
     r.doubtful_below = meshfix_doubtful_below(&o, s.policy);
-    r.status = meshfix_inspect(u.indices.data(), u.indices.size(), u.positions.data(), vertices, 0, &o, &r.before,
-                               nullptr);
-    if (r.status != MESHFIX_OK)
-        return r;
     r.triangle_flipped.assign(triangles, 0);
     r.patch_ids.assign(triangles, 0);
     r.patch_confidence.assign(triangles + 1, 1.0f);
@@ -105,6 +118,7 @@ UnitResult repair_unit(const Unit &u, const Settings &s)
                               &r.after, &out);
     if (r.status != MESHFIX_OK)
         return r;
+    r.before = as_given(r.after);
     decide_faces(u, r);
     check_normals(u, s, r);
     return r;

@@ -34,7 +34,7 @@ struct Settings {
 /* What the repair found and decided for one unit. */
 struct UnitResult {
     meshfix_result status = MESHFIX_OK; /* not OK: the library refused the unit */
-    meshfix_report before{}, after{};   /* inspect, and orient (what it returns, or would) */
+    meshfix_report before{}, after{};   /* the unit as given (as inspect reports it), and as orient returns it (or would) */
     std::vector<unsigned char> triangle_flipped;
     std::vector<unsigned int> patch_ids;
     std::vector<float> patch_confidence;
