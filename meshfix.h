@@ -119,8 +119,10 @@
                       share of rays that escape from each side; the
                       caller's normals when given. Each vote counts only
                       beyond evidence.sigma standard errors; without
-                      significant evidence a patch keeps the side most of
-                      its area faces: a correct mesh comes back unchanged.
+                      significant evidence a unit keeps the side its
+                      patches' winding favours (each patch by the square
+                      root of its area, each triangle in a patch by its
+                      area): a correct mesh comes back unchanged.
                       Rays are drawn in batches until the verdict is
                       settled. MAJORITY without positions;
             OUTWARD   AUTO with open units by MAJORITY;
@@ -2106,24 +2108,6 @@ MESHFIX__PRIVATE void meshfix__join_components(meshfix__mesh *m)
     m->component_count = count;
 }
 
-/* What a patch's triangles add up to, in two frames: as given, and as the
-   flood fill made them consistent ("relative": each one flipped by its
-   relative bit). Volumes are taken about the patch's first vertex. */
-typedef struct meshfix__patch_sums {
-    double weight_kept;     /* weight of triangles with relative bit 0 */
-    double weight_reversed; /* weight of triangles with relative bit 1 */
-    double area;
-    double volume_given;
-    double volume_relative;
-    size_t zero_area;
-    size_t reversed;        /* triangles with relative bit 1: the patch is not consistent as given */
-    double sdf_vote;        /* SDF: area-weighted vote, relative frame; > 0 keeps the seed side */
-    size_t sdf_evaluations;
-    double normal[3];       /* area-weighted normal, relative frame */
-    double normals;         /* the caller's normals: area-weighted vote, relative frame */
-    double normals_area;    /* area of the triangles with a usable normal */
-} meshfix__patch_sums;
-
 MESHFIX__PRIVATE void meshfix__load_corner(const meshfix__mesh *m, unsigned int vertex, const double origin[3],
                                           double out[3])
 {
@@ -2227,7 +2211,25 @@ MESHFIX__PRIVATE unsigned int meshfix__sdf_flip(const meshfix__mesh *m, unsigned
     return m->options->sdf.mode == MESHFIX_SDF_PER_TRIANGLE ? own_flip : patch_flip;
 }
 
-/* ===== >>orient ===== */
+/* ===== >>sums ===== */
+
+/* What a patch's triangles add up to, in two frames: as given, and as the
+   flood fill made them consistent ("relative": each one flipped by its
+   relative bit). Volumes are taken about the patch's first vertex. */
+typedef struct meshfix__patch_sums {
+    double weight_kept;     /* weight of triangles with relative bit 0 */
+    double weight_reversed; /* weight of triangles with relative bit 1 */
+    double area;
+    double volume_given;
+    double volume_relative;
+    size_t zero_area;
+    size_t reversed;        /* triangles with relative bit 1: the patch is not consistent as given */
+    double sdf_vote;        /* SDF: area-weighted vote, relative frame; > 0 keeps the seed side */
+    size_t sdf_evaluations;
+    double normal[3];       /* area-weighted normal, relative frame */
+    double normals;         /* the caller's normals: area-weighted vote, relative frame */
+    double normals_area;    /* area of the triangles with a usable normal */
+} meshfix__patch_sums;
 
 MESHFIX__PRIVATE double meshfix__edge_length(const meshfix__mesh *m, unsigned int h)
 {
