@@ -4293,6 +4293,7 @@ MESHFIX__PRIVATE unsigned int meshfix__boxes_around(const meshfix__node *nodes, 
    to it. Everything known about a unit when its side is decided: */
 #define MESHFIX__OPEN 0
 #define MESHFIX__GAPPED 1        /* most of its boundary is matched inside the unit: maybe closed up to gaps */
+#define MESHFIX__GAPPED_UNMATCHED 0.2 /* GAPPED: less than this share of its boundary without a partner in it */
 #define MESHFIX__NEARLY_CLOSED 2 /* gapped, and its own crossings say it has an inside and an outside */
 #define MESHFIX__CLOSED 3        /* every edge is matched inside the unit */
 
@@ -4754,11 +4755,13 @@ MESHFIX__PRIVATE double meshfix__local_coherence(const meshfix__segment *e, cons
 }
 
 /* Stacked sheets: their triangles lie on the same side of the edges (they
-   fold back onto each other). Two surfaces, not one: whichever way each
-   is wound, the pair says nothing about it. */
+   fold back onto each other: their directions across the edges within
+   60 degrees). Two surfaces, not one: whichever way each is wound, the
+   pair says nothing about it. */
+#define MESHFIX__STACKED_COSINE 0.5
 MESHFIX__PRIVATE int meshfix__stacked(const meshfix__segment *e, const meshfix__segment *f)
 {
-    return meshfix__dot3(e->inward, f->inward) > 0.5;
+    return meshfix__dot3(e->inward, f->inward) > MESHFIX__STACKED_COSINE;
 }
 
 /* A pair of patches from two edges: their coherence, and the most it
@@ -5215,8 +5218,11 @@ MESHFIX__PRIVATE int meshfix__any_too_long(const meshfix__segment *segments, uns
 /* Stage 4: the pairs the partners give. A boundary edge with no real
    counterpart (a hole, a sliver) still finds the nearest edge across the
    way, whose own partner is much closer: such a choice is dropped (kept
-   only when it is mutual, or not much farther than the partner's own),
-   and so is a choice between stacked sheets. */
+   only when it is mutual, or at most twice as far as the partner's own
+   and a twentieth of its length), and so is a choice between stacked
+   sheets. */
+#define MESHFIX__ONE_WAY_FARTHER 2.0
+#define MESHFIX__ONE_WAY_SLACK 0.05
 MESHFIX__PRIVATE void meshfix__pair_partners(meshfix__segment *segments, unsigned int n, meshfix__pair *pairs,
                                             size_t *pair_count)
 {
@@ -5228,7 +5234,8 @@ MESHFIX__PRIVATE void meshfix__pair_partners(meshfix__segment *segments, unsigne
             continue;
         f = &segments[s->partner];
         c = meshfix__local_coherence(s, f, s->distance);
-        if ((f->partner != i && s->distance > 2.0 * f->distance + 0.05 * s->length) || meshfix__stacked(s, f)) {
+        if ((f->partner != i && s->distance > MESHFIX__ONE_WAY_FARTHER * f->distance + MESHFIX__ONE_WAY_SLACK * s->length) ||
+            meshfix__stacked(s, f)) {
             s->matched = 0;
             continue;
         }
@@ -5863,7 +5870,7 @@ MESHFIX__PRIVATE void meshfix__close_units(meshfix__geometry *g, const meshfix__
     }
     for (u = 0; u < g->unit_count; ++u) {
         meshfix__unit *x = &g->units[u];
-        if (x->closed == MESHFIX__OPEN && x->unmatched < 0.2 * x->boundary)
+        if (x->closed == MESHFIX__OPEN && x->unmatched < MESHFIX__GAPPED_UNMATCHED * x->boundary)
             x->closed = MESHFIX__GAPPED;
         if (x->closed == MESHFIX__CLOSED && !meshfix__volume_is_meaningful(x->volume, x->area))
             x->closed = MESHFIX__OPEN;
@@ -6369,12 +6376,14 @@ MESHFIX__PRIVATE unsigned int meshfix__ray_cap(const meshfix__geometry *g, const
 }
 
 /* Significant: the mean's bound nearest 0 is at least a tenth away; for
-   escaping rays, a third: hills hide part of a terrain's top from the sky
+   escaping rays, about a third: hills hide part of a terrain's top from the sky
    and nothing hides its underside, yet it faces up. An enclosed side (the
    inside of a car body in a soup) blocks most of its rays. */
+#define MESHFIX__SIGNIFICANT 0.1
+#define MESHFIX__SIGNIFICANT_ESCAPE 0.35
 MESHFIX__PRIVATE double meshfix__significance_floor(const meshfix__unit *u)
 {
-    return u->kind == MESHFIX_EVIDENCE_VISIBILITY ? 0.35 : 0.1;
+    return u->kind == MESHFIX_EVIDENCE_VISIBILITY ? MESHFIX__SIGNIFICANT_ESCAPE : MESHFIX__SIGNIFICANT;
 }
 
 MESHFIX__PRIVATE int meshfix__significant(const meshfix__unit *u, double sigma)
@@ -6713,8 +6722,12 @@ MESHFIX__PRIVATE void meshfix__index_shells(meshfix__geometry *g)
    with a volume decided, and at least 90% of their area turned over. Then
    the open parts are most likely reversed too: they turn over unless
    their own evidence says otherwise. A shell whose normals agree with its
-   winding was authored facing that way (the rooms of a building model,
-   wound and lit from inside): it counts as not turned, so it vetoes. */
+   winding (their mean vote above a half) was authored facing that way
+   (the rooms of a building model, wound and lit from inside): it counts
+   as not turned, so it vetoes. */
+#define MESHFIX__REVERSED_SHELLS 2
+#define MESHFIX__REVERSED_SHARE 0.9
+#define MESHFIX__AUTHORED_NORMALS 0.5
 MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g)
 {
     double turned = 0, all = 0;
@@ -6729,9 +6742,9 @@ MESHFIX__PRIVATE unsigned int meshfix__scene_reversed(const meshfix__geometry *g
            side most of it faces as given */
         count++;
         all += x->area;
-        turned += x->mean * majority < 0 && normals * majority <= 0.5 ? x->area : 0.0;
+        turned += x->mean * majority < 0 && normals * majority <= MESHFIX__AUTHORED_NORMALS ? x->area : 0.0;
     }
-    return count >= 2 && turned >= 0.9 * all;
+    return count >= MESHFIX__REVERSED_SHELLS && turned >= MESHFIX__REVERSED_SHARE * all;
 }
 
 /* VISIBILITY: one sample pair of patch p; counts the side(s) that escape. */
