@@ -2893,22 +2893,17 @@ MESHFIX__PRIVATE unsigned int meshfix__build_tree(meshfix__builder *k, unsigned 
     return meshfix__build_nodes(k, NULL, first, count);
 }
 
-/* The builder's slots [first, end): each triangle's box and centroid. */
-MESHFIX__PRIVATE void meshfix__builder_slots(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
-                                            unsigned int end)
+/* A triangle's builder slot (its box, then its centroid) from its
+   corners. */
+MESHFIX__PRIVATE void meshfix__box_slot(const float corners[9], float slot[9])
 {
-    unsigned int i;
     int c;
-    for (i = first; i < end; ++i) {
-        float corners[9], *slot = b->corners + 9 * (size_t)i;
-        meshfix__load_corners(b, m, b->order[i], corners);
-        MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
-        MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
-        meshfix__grow_box(slot, slot + 3, corners + 3);
-        meshfix__grow_box(slot, slot + 3, corners + 6);
-        for (c = 0; c < 3; ++c)
-            slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
-    }
+    MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
+    MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
+    meshfix__grow_box(slot, slot + 3, corners + 3);
+    meshfix__grow_box(slot, slot + 3, corners + 6);
+    for (c = 0; c < 3; ++c)
+        slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
 }
 
 /* Large units are built the way of HLBVH (Pantaleoni and Luebke, 2010):
@@ -3088,19 +3083,6 @@ typedef struct meshfix__morton_build {
     float *cluster_slots;
     int phase;
 } meshfix__morton_build;
-
-/* A triangle's builder slot (its box, then its centroid) from its
-   corners. */
-MESHFIX__PRIVATE void meshfix__box_slot(const float corners[9], float slot[9])
-{
-    int c;
-    MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
-    MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
-    meshfix__grow_box(slot, slot + 3, corners + 3);
-    meshfix__grow_box(slot, slot + 3, corners + 6);
-    for (c = 0; c < 3; ++c)
-        slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
-}
 
 /* Slot i's corners and triangle into its lane of the blocks. */
 MESHFIX__PRIVATE void meshfix__fill_lane(meshfix__bvh *b, unsigned int i)
@@ -3416,23 +3398,41 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
 }
 
 /* The tree of slots [first, end) by binned SAH alone, from node `base`
-   on; returns its root. The slots hold each triangle's box and centroid
-   while it is built, its corners afterwards. */
+   on, in the unit's room for nodes that ends at `room_end`; returns its
+   root. The slots hold each triangle's box and centroid while it is
+   built. Its corners are read from the mesh once: they wait at the end of
+   the room (the nodes take under half of it) and move into the tree's
+   order after (reading them again was a tenth of the build). */
 MESHFIX__PRIVATE unsigned int meshfix__sah_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
-                                               unsigned int end, unsigned int base)
+                                               unsigned int end, unsigned int base, unsigned int room_end)
 {
     meshfix__builder k;
-    unsigned int i, root;
-    meshfix__builder_slots(b, m, first, end);
-    k.slots = b->corners;
-    k.ids = b->order;
+    unsigned int n = end - first, i, root, node, *ids = b->sort + 4 * (size_t)first, *triangles = ids + n;
+    float *waiting = (float *)(void *)(b->nodes + room_end) - 9 * (size_t)n;
+    int c;
+    MESHFIX_ASSERT((size_t)(room_end - base - meshfix__wide_budget(n)) * sizeof(meshfix__wide) >=
+                   9 * (size_t)n * sizeof(float));
+    for (i = 0; i < n; ++i) {
+        triangles[i] = b->order[first + i];
+        ids[i] = i;
+        meshfix__load_corners(b, m, triangles[i], waiting + 9 * (size_t)i);
+        meshfix__box_slot(waiting + 9 * (size_t)i, b->corners + 9 * (size_t)(first + i));
+    }
+    k.slots = b->corners + 9 * (size_t)first;
+    k.ids = ids;
     k.nodes = NULL;
     k.next_node = base;
     k.leaf = MESHFIX__LEAF;
-    root = meshfix__build_nodes(&k, b->nodes, first, end - first);
-    MESHFIX_ASSERT(k.next_node - base <= meshfix__wide_budget(end - first));
-    for (i = first; i < end; ++i)
-        meshfix__load_corners(b, m, b->order[i], b->corners + 9 * (size_t)i);
+    root = meshfix__build_nodes(&k, b->nodes, 0, n);
+    MESHFIX_ASSERT(k.next_node - base <= meshfix__wide_budget(n));
+    for (i = 0; i < n; ++i) {
+        MESHFIX_MEMCPY(b->corners + 9 * (size_t)(first + i), waiting + 9 * (size_t)ids[i], 9 * sizeof(float));
+        b->order[first + i] = triangles[ids[i]];
+    }
+    for (node = base; node < k.next_node; ++node)
+        for (c = 0; c < MESHFIX__WIDE; ++c)
+            if (b->nodes[node].leaves & (1u << c))
+                b->nodes[node].child[c] += first;
     meshfix__fill_lanes(b, first, end);
     return root;
 }
@@ -3455,7 +3455,7 @@ MESHFIX__PRIVATE unsigned int meshfix__build_unit_by(meshfix__bvh *b, const mesh
     /* each builder fills the unit's blocks as its corners become final */
     b->unit_root[u] = builder == MESHFIX__BUILD_AUTO && end - first >= MESHFIX__MORTON_MIN
                           ? meshfix__morton_tree(b, m, first, end, base, parallel)
-                          : meshfix__sah_tree(b, m, first, end, base);
+                          : meshfix__sah_tree(b, m, first, end, base, meshfix__unit_nodes(b, u + 1));
     return b->unit_root[u];
 }
 
