@@ -2367,7 +2367,8 @@ typedef struct meshfix__bvh {
                                   depend on it */
     float *corners;            /* per slot: 9 floats, the corners in the frame */
     double *cumulative_area;   /* per entry of by_index: its unit's area up to it (sampling) */
-    unsigned int *sort;        /* per slot 4: scratch of the Morton build */
+    unsigned int *sort;        /* per slot 4: scratch of the builds (the Morton codes and their sort; the
+                                  SAH tree's ids and triangles) */
     unsigned int *unit_first;  /* per unit + 1: its first slot */
     unsigned int *unit_root;   /* per unit: its tree's root, NONE until built */
     unsigned int unit_count;
@@ -3044,10 +3045,12 @@ MESHFIX__PRIVATE unsigned int meshfix__wide_budget(unsigned int count)
 
 /* Where unit u's nodes start, and the top tree's: a unit of s slots has
    s / 2 + 2 nodes' room, which its tree never fills: its own SAH tree
-   takes at most meshfix__wide_budget(s), about s / 4; a Morton-cluster
-   tree at most the clusters (s / 8 + s / 64 + 1) and their SAH trees
-   (about s / 4 in all). The Morton build's corners wait in that room
-   too (36 bytes a slot, in 128). */
+   takes at most meshfix__wide_budget(s), about s / 5 with leaves of 16; a
+   Morton-cluster tree at most the clusters (s / 16 + s / 64 + 1) and
+   their SAH trees (about s / 5 in all). Both builds' corners wait in that
+   room too (36 bytes a slot, in 128): the Morton build's from its start,
+   before any node is written; the SAH build's at its end, past the most
+   nodes it writes. */
 MESHFIX__PRIVATE unsigned int meshfix__unit_nodes(const meshfix__bvh *b, unsigned int u)
 {
     return b->unit_first[u] / 2 + 2 * u;
@@ -3637,7 +3640,9 @@ MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c
 }
 
 /* What a traversal looks for: the first hit, the closest, or the number of
-   surfaces crossed (a parity). */
+   surfaces crossed (a parity). The library asks for the first and the
+   count; the closest (and its distance) is what the bench and the tests
+   measure the tree by against Embree and brute force. */
 #define MESHFIX__ANY_HIT 0
 #define MESHFIX__CLOSEST_HIT 1
 #define MESHFIX__COUNT_HITS 2
@@ -3646,8 +3651,7 @@ typedef struct meshfix__query {
     int mode;
     unsigned int skip;      /* a triangle to ignore (the ray's own), or NONE */
     unsigned int hits;      /* COUNT_HITS: crossings, each counted once */
-    unsigned int triangle;  /* ANY / CLOSEST: the triangle hit */
-    float t;
+    float t;                /* ANY / CLOSEST: the distance of the hit */
 } meshfix__query;
 
 /* Crossing counts must count a ray through a shared edge or vertex once:
@@ -4061,7 +4065,6 @@ MESHFIX__INLINE_ALWAYS static int meshfix__take_hits(const meshfix__leaf_block *
             meshfix__count_crossing(crossings, t[i], zeros[i]);
             continue;
         }
-        q->triangle = id;
         q->t = t[i];
         q->hits = 1;
         if (q->mode == MESHFIX__ANY_HIT)
@@ -4216,7 +4219,6 @@ MESHFIX__INLINE_ALWAYS static int meshfix__traverse(const meshfix__bvh *b, unsig
     meshfix__crossings crossings;
     crossings.halves = crossings.vertex_count = 0;
     q->hits = 0;
-    q->triangle = MESHFIX__NONE;
     while (node != MESHFIX__NONE) {
         const meshfix__wide *n = &b->nodes[node];
         float entry[MESHFIX__WIDE];
