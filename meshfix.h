@@ -2843,21 +2843,27 @@ MESHFIX__PRIVATE void meshfix__parts_in_slot_order(meshfix__pending parts[MESHFI
     }
 }
 
-/* Builds a tree over slots [first, first + count) into nodes from
-   k->next_node on, depth first (a node's first child's subtree follows
-   it); returns its root. Four-wide nodes into k->nodes, or, when `wide`
-   is given, eight-wide ones there. Deterministic: no randomness, splits
-   depend only on the slots and their order. At most `count` nodes: each
-   has two children or more, but a root over a single leaf; eight-wide,
-   at most meshfix__wide_budget(count). */
-MESHFIX__PRIVATE unsigned int meshfix__build_nodes(meshfix__builder *k, meshfix__wide *wide, unsigned int first,
-                                                  unsigned int count)
+/* A part of slots that a build leaves for later (meshfix__build_top):
+   where its slots start, how many, its level, the child entry that will
+   point at its tree; then the room for its nodes and where they end. */
+typedef struct meshfix__deferred {
+    unsigned int first, count, level, parent;
+    int slot;
+    unsigned int base, end;
+} meshfix__deferred;
+
+/* meshfix__build_nodes from `level` halvings below a root on; parts of
+   `defer` slots or fewer that are not leaves are not built but written to
+   `deferred` (eight-wide trees; defer 0: none), counted in *deferred_count. */
+MESHFIX__PRIVATE unsigned int meshfix__build_top(meshfix__builder *k, meshfix__wide *wide, unsigned int first,
+                                                unsigned int count, unsigned int level, unsigned int defer,
+                                                meshfix__deferred *deferred, unsigned int *deferred_count)
 {
     meshfix__pending stack[(MESHFIX__WIDE - 1) * MESHFIX__BVH_LEVELS + 8], parts[MESHFIX__WIDE];
     unsigned int depth = 1, root = k->next_node;
     int leaf[MESHFIX__WIDE], n, c, width = wide != NULL ? MESHFIX__WIDE : MESHFIX__WIDTH;
     stack[0].first = first;
-    stack[0].level = 0;
+    stack[0].level = level;
     stack[0].parent = MESHFIX__NONE;
     stack[0].slot = 0;
     meshfix__fit_range(k, first, count, &stack[0].range);
@@ -2887,11 +2893,33 @@ MESHFIX__PRIVATE unsigned int meshfix__build_nodes(meshfix__builder *k, meshfix_
                 continue;
             parts[c].parent = index;
             parts[c].slot = c;
+            if (parts[c].range.count <= defer) {
+                meshfix__deferred *d = &deferred[(*deferred_count)++];
+                d->first = parts[c].first;
+                d->count = parts[c].range.count;
+                d->level = parts[c].level;
+                d->parent = index;
+                d->slot = c;
+                continue;
+            }
             MESHFIX_ASSERT(depth < sizeof(stack) / sizeof(stack[0]));
             stack[depth++] = parts[c];
         }
     }
     return root;
+}
+
+/* Builds a tree over slots [first, first + count) into nodes from
+   k->next_node on, depth first (a node's first child's subtree follows
+   it); returns its root. Four-wide nodes into k->nodes, or, when `wide`
+   is given, eight-wide ones there. Deterministic: no randomness, splits
+   depend only on the slots and their order. At most `count` nodes: each
+   has two children or more, but a root over a single leaf; eight-wide,
+   at most meshfix__wide_budget(count). */
+MESHFIX__PRIVATE unsigned int meshfix__build_nodes(meshfix__builder *k, meshfix__wide *wide, unsigned int first,
+                                                  unsigned int count)
+{
+    return meshfix__build_top(k, wide, first, count, 0, 0, NULL, NULL);
 }
 
 /* The four-wide tree of the builder's slots (the tree over shells). */
@@ -3084,7 +3112,7 @@ MESHFIX__PRIVATE int meshfix__place_ray_trees(size_t *total, meshfix__span *node
    caller's parallel_for runs them side by side when the unit is built on
    its own (never from inside another task), and every chunk writes the
    same bits wherever it runs. */
-#define MESHFIX__MORTON_CHUNKS 64
+#define MESHFIX__BUILD_CHUNKS 64
 #ifndef MESHFIX__PARALLEL_UNIT
 #define MESHFIX__PARALLEL_UNIT 65536 /* triangles from which a unit's own build is parallel */
 #endif
@@ -3100,7 +3128,7 @@ typedef struct meshfix__morton_build {
     unsigned int first, n;          /* the unit's slots */
     unsigned int *order, *codes, *slot_of, *scratch;
     float *slots, *waiting;         /* final corners; corners in triangle order (in the unit's nodes) */
-    float chunk_box[MESHFIX__MORTON_CHUNKS][6];
+    float chunk_box[MESHFIX__BUILD_CHUNKS][6];
     float low[3];
     double scale[3];
     unsigned int clusters, *starts, *ids, *bases; /* cluster c: slots from starts[c], room for nodes from bases[c] */
@@ -3170,7 +3198,7 @@ MESHFIX__PRIVATE void meshfix__morton_chunk(void *context, size_t chunk)
 {
     meshfix__morton_build *k = (meshfix__morton_build *)context;
     unsigned int total = k->phase >= MESHFIX__BUILD_CLUSTERS ? k->clusters : k->n, i, j;
-    unsigned int per = (total + MESHFIX__MORTON_CHUNKS - 1) / MESHFIX__MORTON_CHUNKS;
+    unsigned int per = (total + MESHFIX__BUILD_CHUNKS - 1) / MESHFIX__BUILD_CHUNKS;
     unsigned int from = (unsigned int)chunk * per, to = from + per < total ? from + per : total;
     int c;
     for (i = from; i < to; ++i) {
@@ -3219,7 +3247,7 @@ MESHFIX__PRIVATE void meshfix__morton_chunk(void *context, size_t chunk)
 MESHFIX__PRIVATE void meshfix__morton_phase(meshfix__morton_build *k, int phase, const meshfix_options *parallel)
 {
     k->phase = phase;
-    meshfix__run_tasks(parallel, meshfix__morton_chunk, k, MESHFIX__MORTON_CHUNKS);
+    meshfix__run_tasks(parallel, meshfix__morton_chunk, k, MESHFIX__BUILD_CHUNKS);
 }
 
 /* The cluster whose nodes started at `node` (as built): the last whose
@@ -3351,12 +3379,12 @@ MESHFIX__PRIVATE unsigned int meshfix__morton_tree(meshfix__bvh *b, const meshfi
     /* the corners wait where the unit's nodes will be, until they are
        moved into code order */
     k.waiting = (float *)(void *)(b->nodes + base);
-    for (chunk = 0; chunk < MESHFIX__MORTON_CHUNKS; ++chunk)
+    for (chunk = 0; chunk < MESHFIX__BUILD_CHUNKS; ++chunk)
         meshfix__empty_box(k.chunk_box[chunk]);
     meshfix__morton_phase(&k, MESHFIX__BUILD_CENTROIDS, parallel);
     for (c = 0; c < 3; ++c) {
         k.low[c] = 1e30f, high[c] = -1e30f;
-        for (chunk = 0; chunk < MESHFIX__MORTON_CHUNKS; ++chunk) {
+        for (chunk = 0; chunk < MESHFIX__BUILD_CHUNKS; ++chunk) {
             k.low[c] = k.chunk_box[chunk][c] < k.low[c] ? k.chunk_box[chunk][c] : k.low[c];
             high[c] = k.chunk_box[chunk][3 + c] > high[c] ? k.chunk_box[chunk][3 + c] : high[c];
         }
@@ -3425,47 +3453,171 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
     return 1;
 }
 
+/* A unit's SAH build in phases, as the Morton build's: each a loop over
+   equal chunks of its slots, or over the parts it left for later, that
+   touch only their own slots and nodes. A unit of MESHFIX__PARALLEL_UNIT
+   slots or more is built as its top, then every part of a quarter of its
+   slots or fewer as a task of its own, whether the caller runs tasks side
+   by side or not: the same tree either way (a part's tree is the tree its
+   slots would have had in place, only its nodes lie elsewhere). */
+#define MESHFIX__SAH_SLOTS 0  /* corners into waiting, each triangle's box and centroid into its slot */
+#define MESHFIX__SAH_PARTS 1  /* a part's tree a task */
+#define MESHFIX__SAH_GATHER 2 /* corners and triangles in the tree's order, then into the blocks */
+
+typedef struct meshfix__sah_build {
+    meshfix__bvh *b;
+    const meshfix__mesh *m;
+    unsigned int first, n;           /* the unit's slots */
+    unsigned int *ids, *triangles;   /* per slot: where its corners wait; the unit's triangles as given */
+    float *slots, *waiting;          /* the builder's slots; the corners in the order given */
+    meshfix__deferred *parts;        /* what the top left for later */
+    unsigned int part_count;
+    int phase;
+} meshfix__sah_build;
+
+/* The builder over the unit's slots, its nodes from `next_node` on. */
+MESHFIX__PRIVATE void meshfix__sah_builder(const meshfix__sah_build *k, unsigned int next_node, meshfix__builder *sub)
+{
+    sub->slots = k->slots;
+    sub->ids = k->ids;
+    sub->nodes = NULL;
+    sub->next_node = next_node;
+    sub->leaf = MESHFIX__LEAF;
+}
+
+/* Slots [from, to) of the unit: their triangles' corners into waiting,
+   each one's box and centroid into its slot. */
+MESHFIX__PRIVATE void meshfix__sah_slots(const meshfix__sah_build *k, unsigned int from, unsigned int to)
+{
+    const unsigned int *order = k->b->order + k->first;
+    float *waiting = k->waiting, *slots = k->slots;
+    unsigned int i;
+    for (i = from; i < to; ++i) {
+        k->triangles[i] = order[i];
+        k->ids[i] = i;
+        meshfix__load_corners(k->b, k->m, order[i], waiting + 9 * (size_t)i);
+        meshfix__box_slot(waiting + 9 * (size_t)i, slots + 9 * (size_t)i);
+    }
+}
+
+/* Slots [from, to) in the tree's order: their corners, read at random
+   (asked for a few slots ahead), and triangles, then into the blocks. */
+MESHFIX__PRIVATE void meshfix__sah_gather(const meshfix__sah_build *k, unsigned int from, unsigned int to)
+{
+    const unsigned int *ids = k->ids, *triangles = k->triangles;
+    const float *waiting = k->waiting;
+    unsigned int *order = k->b->order + k->first, i;
+    float *slots = k->slots;
+    for (i = from; i < to; ++i) {
+        if (i + MESHFIX__AHEAD < to)
+            MESHFIX__PREFETCH(waiting + 9 * (size_t)ids[i + MESHFIX__AHEAD]);
+        MESHFIX_MEMCPY(slots + 9 * (size_t)i, waiting + 9 * (size_t)ids[i], 9 * sizeof(float));
+        order[i] = triangles[ids[i]];
+    }
+    meshfix__fill_lanes(k->b, k->first + from, k->first + to);
+}
+
+/* Part p's tree, in the room from its base on. */
+MESHFIX__PRIVATE void meshfix__sah_part(const meshfix__sah_build *k, meshfix__deferred *d)
+{
+    meshfix__builder sub;
+    meshfix__sah_builder(k, d->base, &sub);
+    meshfix__build_top(&sub, k->b->nodes, d->first, d->count, d->level, 0, NULL, NULL);
+    MESHFIX_ASSERT(sub.next_node - d->base <= meshfix__wide_budget(d->count));
+    d->end = sub.next_node;
+}
+
+MESHFIX__PRIVATE void meshfix__sah_chunk(void *context, size_t chunk)
+{
+    meshfix__sah_build *k = (meshfix__sah_build *)context;
+    unsigned int per = (k->n + MESHFIX__BUILD_CHUNKS - 1) / MESHFIX__BUILD_CHUNKS;
+    unsigned int from = (unsigned int)chunk * per, to = from + per < k->n ? from + per : k->n;
+    if (k->phase == MESHFIX__SAH_PARTS)
+        meshfix__sah_part(k, &k->parts[chunk]);
+    else if (from >= to)
+        return;
+    else if (k->phase == MESHFIX__SAH_SLOTS)
+        meshfix__sah_slots(k, from, to);
+    else
+        meshfix__sah_gather(k, from, to);
+}
+
+MESHFIX__PRIVATE void meshfix__sah_phase(meshfix__sah_build *k, int phase, size_t tasks, const meshfix_options *parallel)
+{
+    k->phase = phase;
+    meshfix__run_tasks(parallel, meshfix__sah_chunk, k, tasks);
+}
+
+/* Moves the parts' nodes together from node `next` on (the top's end), in
+   part order, and points the top at them: each was built in the room of
+   its bound. Nodes only move down, so a forward copy is safe. Returns the
+   end of the unit's nodes. */
+MESHFIX__PRIVATE unsigned int meshfix__pack_parts(meshfix__sah_build *k, unsigned int next)
+{
+    meshfix__wide *nodes = k->b->nodes;
+    unsigned int p, node, used, delta;
+    int i;
+    for (p = 0; p < k->part_count; ++p) {
+        const meshfix__deferred *d = &k->parts[p];
+        used = d->end - d->base;
+        delta = d->base - next;
+        for (node = next; node < next + used; ++node) {
+            nodes[node] = nodes[node + delta];
+            for (i = 0; i < MESHFIX__WIDE; ++i)
+                if (nodes[node].inner & (1u << i))
+                    nodes[node].child[i] -= delta;
+        }
+        meshfix__link_wide(&nodes[d->parent], d->slot, next, 0);
+        next += used;
+    }
+    return next;
+}
+
 /* The tree of slots [first, end) by binned SAH alone, from node `base`
-   on, in the unit's room for nodes that ends at `room_end`; returns its
-   root. The slots hold each triangle's box and centroid while it is
+   on, in the unit's room for nodes that ends at `room_end`; `parallel`:
+   the options whose parallel_for may run the phases (NULL: here). Returns
+   its root. The slots hold each triangle's box and centroid while it is
    built. Its corners are read from the mesh once: they wait at the end of
    the room (the nodes take under half of it) and move into the tree's
    order after (reading them again was a tenth of the build). */
 MESHFIX__PRIVATE unsigned int meshfix__sah_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
-                                               unsigned int end, unsigned int base, unsigned int room_end)
+                                               unsigned int end, unsigned int base, unsigned int room_end,
+                                               const meshfix_options *parallel)
 {
-    meshfix__builder k;
-    unsigned int n = end - first, i, root, node, *ids = b->sort + 4 * (size_t)first, *triangles = ids + n;
-    float *waiting = (float *)(void *)(b->nodes + room_end) - 9 * (size_t)n;
+    meshfix__sah_build k;
+    meshfix__builder top;
+    unsigned int n = end - first, root, node, next, p;
     int c;
-    MESHFIX_ASSERT((size_t)(room_end - base - meshfix__wide_budget(n)) * sizeof(meshfix__wide) >=
-                   9 * (size_t)n * sizeof(float));
-    for (i = 0; i < n; ++i) {
-        triangles[i] = b->order[first + i];
-        ids[i] = i;
-        meshfix__load_corners(b, m, triangles[i], waiting + 9 * (size_t)i);
-        meshfix__box_slot(waiting + 9 * (size_t)i, b->corners + 9 * (size_t)(first + i));
-    }
+    k.b = b;
+    k.m = m;
+    k.first = first;
+    k.n = n;
+    k.ids = b->sort + 4 * (size_t)first;
+    k.triangles = k.ids + n;
+    k.parts = (meshfix__deferred *)(void *)(k.triangles + n); /* the rest of the unit's scratch */
+    k.part_count = 0;
     k.slots = b->corners + 9 * (size_t)first;
-    k.ids = ids;
-    k.nodes = NULL;
-    k.next_node = base;
-    k.leaf = MESHFIX__LEAF;
-    root = meshfix__build_nodes(&k, b->nodes, 0, n);
-    MESHFIX_ASSERT(k.next_node - base <= meshfix__wide_budget(n));
-    for (i = 0; i < n; ++i) {
-        /* the corners are read in the tree's order, at random: asked for
-           a few slots ahead */
-        if (i + MESHFIX__AHEAD < n)
-            MESHFIX__PREFETCH(waiting + 9 * (size_t)ids[i + MESHFIX__AHEAD]);
-        MESHFIX_MEMCPY(b->corners + 9 * (size_t)(first + i), waiting + 9 * (size_t)ids[i], 9 * sizeof(float));
-        b->order[first + i] = triangles[ids[i]];
+    k.waiting = (float *)(void *)(b->nodes + room_end) - 9 * (size_t)n;
+    meshfix__sah_phase(&k, MESHFIX__SAH_SLOTS, MESHFIX__BUILD_CHUNKS, parallel);
+    meshfix__sah_builder(&k, base, &top);
+    root = meshfix__build_top(&top, b->nodes, 0, n, 0, n >= MESHFIX__PARALLEL_UNIT ? n / 4 : 0, k.parts,
+                              &k.part_count);
+    /* parts have more than a leaf's worth of slots each */
+    MESHFIX_ASSERT(k.part_count * sizeof(meshfix__deferred) <= 2 * (size_t)n * sizeof(unsigned int));
+    for (p = 0, next = top.next_node; p < k.part_count; ++p) {
+        k.parts[p].base = next;
+        next += meshfix__wide_budget(k.parts[p].count);
     }
-    for (node = base; node < k.next_node; ++node)
+    MESHFIX_ASSERT(next <= room_end &&
+                   (size_t)(room_end - next) * sizeof(meshfix__wide) >= 9 * (size_t)n * sizeof(float));
+    meshfix__sah_phase(&k, MESHFIX__SAH_PARTS, k.part_count, parallel);
+    next = meshfix__pack_parts(&k, top.next_node);
+    MESHFIX_ASSERT(next - base <= meshfix__wide_budget(n) + k.part_count);
+    for (node = base; node < next; ++node)
         for (c = 0; c < MESHFIX__WIDE; ++c)
             if (b->nodes[node].leaves & (1u << c))
                 b->nodes[node].child[c] += first;
-    meshfix__fill_lanes(b, first, end);
+    meshfix__sah_phase(&k, MESHFIX__SAH_GATHER, MESHFIX__BUILD_CHUNKS, parallel);
     return root;
 }
 
@@ -3489,7 +3641,7 @@ MESHFIX__PRIVATE unsigned int meshfix__build_unit_by(meshfix__bvh *b, const mesh
     b->unit_root[u] = builder == MESHFIX__BUILD_MORTON ||
                               (builder == MESHFIX__BUILD_AUTO && end - first >= MESHFIX__MORTON_MIN)
                           ? meshfix__morton_tree(b, m, first, end, base, parallel)
-                          : meshfix__sah_tree(b, m, first, end, base, meshfix__unit_nodes(b, u + 1));
+                          : meshfix__sah_tree(b, m, first, end, base, meshfix__unit_nodes(b, u + 1), parallel);
     return b->unit_root[u];
 }
 
