@@ -2928,8 +2928,10 @@ MESHFIX__PRIVATE unsigned int meshfix__build_tree(meshfix__builder *k, unsigned 
     return meshfix__build_nodes(k, NULL, first, count);
 }
 
-/* A triangle's builder slot (its box, then its centroid) from its
-   corners. */
+/* A triangle's builder slot from its corners: its box, then the box's
+   centre as the point it is binned by (against the triangle's centroid:
+   on head.stl 6% fewer nodes and 8% fewer blocks a closest-hit ray,
+   1-6% faster rays, the same build time; measured in one process). */
 MESHFIX__PRIVATE void meshfix__box_slot(const float corners[9], float slot[9])
 {
     int c;
@@ -2938,7 +2940,7 @@ MESHFIX__PRIVATE void meshfix__box_slot(const float corners[9], float slot[9])
     meshfix__grow_box(slot, slot + 3, corners + 3);
     meshfix__grow_box(slot, slot + 3, corners + 6);
     for (c = 0; c < 3; ++c)
-        slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
+        slot[MESHFIX__SLOT_CENTROID + c] = 0.5f * (slot[c] + slot[3 + c]);
 }
 
 /* Asks for the cache line at p ahead of its use, where the compiler can
