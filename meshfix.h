@@ -3031,12 +3031,11 @@ MESHFIX__PRIVATE void meshfix__box_slot(const float corners[9], float slot[9])
    the rays' cost is mostly in the lowest levels, which SAH shapes (on a
    million-triangle sphere 35% faster incoherent rays, on head.stl 18%).
    Below MESHFIX__MORTON_MIN triangles binned SAH alone builds about as
-   fast (its corners read once, leaves of 16) and its tree is the better:
+   fast (its corners read once, larger leaves) and its tree is the better:
    against this build at 16-slot leaves, in one process, the 40k sphere
    builds in 0.95x the time and traces 12-14% faster, head.stl (118k)
    builds in 1.05x and traces 13-25% faster; on the 1M sphere binned SAH
-   traced 6-13% faster but built in 1.2x the time, on one thread, where
-   this build's phases run on the caller's threads. */
+   traced 6-13% faster but built in 1.25x the time (one thread each). */
 #ifndef MESHFIX__MORTON_MIN /* the fuzzers lower both to reach these paths with small meshes */
 #define MESHFIX__MORTON_MIN 262144
 #endif
@@ -3142,9 +3141,9 @@ MESHFIX__PRIVATE unsigned int meshfix__wide_budget(unsigned int count)
 
 /* Where unit u's nodes start, and the top tree's: a unit of s slots has
    s / 2 + 2 nodes' room, which its tree never fills: its own SAH tree
-   takes at most meshfix__wide_budget(s), about s / 5 with leaves of 16; a
-   Morton-cluster tree at most the clusters (s / 16 + s / 64 + 1) and
-   their SAH trees (about s / 5 in all). Both builds' corners wait in that
+   takes at most meshfix__wide_budget(s), under s / 5 with leaves of 24; a
+   Morton-cluster tree at most the clusters (s / 24 + s / 64 + 1) and
+   their SAH trees (under s / 5 in all). Both builds' corners wait in that
    room too (36 bytes a slot, in 128): the Morton build's from its start,
    before any node is written; the SAH build's at its end, past the most
    nodes it writes. */
