@@ -3610,10 +3610,18 @@ MESHFIX__PRIVATE void meshfix__sah_chunk(void *context, size_t chunk)
         meshfix__sah_gather(k, from, to);
 }
 
+/* A phase as tasks where the unit is built on the caller's threads, else
+   in one go (a unit of a few triangles, of which a model may have
+   thousands, paid for 64 calls a phase); the same bits either way. */
 MESHFIX__PRIVATE void meshfix__sah_phase(meshfix__sah_build *k, int phase, size_t tasks, const meshfix_options *parallel)
 {
     k->phase = phase;
-    meshfix__run_tasks(parallel, meshfix__sah_chunk, k, tasks);
+    if (k->n >= MESHFIX__PARALLEL_UNIT)
+        meshfix__run_tasks(parallel, meshfix__sah_chunk, k, tasks);
+    else if (phase == MESHFIX__SAH_SLOTS)
+        meshfix__sah_slots(k, 0, k->n);
+    else if (phase == MESHFIX__SAH_GATHER)
+        meshfix__sah_gather(k, 0, k->n);
 }
 
 /* Moves the parts' nodes together from node `next` on (the top's end), in
