@@ -2376,7 +2376,8 @@ typedef struct meshfix__bvh {
                                   depend on it */
     float *corners;            /* per slot: 9 floats, the corners in the frame */
     double *cumulative_area;   /* per entry of by_index: its unit's area up to it (sampling) */
-    unsigned int *sort;        /* per slot 4: scratch of the Morton build */
+    unsigned int *sort;        /* per slot 4: scratch of the builds (the Morton codes and their sort; the
+                                  SAH tree's ids and triangles) */
     unsigned int *unit_first;  /* per unit + 1: its first slot */
     unsigned int *unit_root;   /* per unit: its tree's root, NONE until built */
     unsigned int unit_count;
@@ -2439,21 +2440,27 @@ MESHFIX__PRIVATE float meshfix__centroid(const float *corners, int axis)
    corners can overflow a float. */
 MESHFIX__PRIVATE void meshfix__fit_frame(meshfix__bvh *b, const meshfix__mesh *m)
 {
-    double low[3] = {0, 0, 0}, high[3] = {0, 0, 0}, half = 0;
-    unsigned int t, c, seen = 0;
-    int k;
+    /* the box in float, held in locals: the least and greatest of floats
+       are floats (a box in double, kept in arrays, was a store and a load
+       per corner and axis) */
+    float box_low[3] = {0, 0, 0}, box_high[3] = {0, 0, 0};
+    double low[3], high[3], half = 0;
+    unsigned int t, c;
+    int k, seen = 0;
     for (t = 0; t < m->triangle_count; ++t) {
         if (!meshfix__has_geometry(m, t))
             continue;
-        for (c = 0; c < 3; ++c) {
-            const float *p = meshfix__position(m, m->indices[3 * t + c]);
-            for (k = 0; k < 3; ++k) {
-                double x = (double)p[k];
-                low[k] = seen == 0 || x < low[k] ? x : low[k];
-                high[k] = seen == 0 || x > high[k] ? x : high[k];
-            }
+        if (!seen) {
+            MESHFIX_MEMCPY(box_low, meshfix__position(m, m->indices[3 * t]), sizeof(box_low));
+            MESHFIX_MEMCPY(box_high, box_low, sizeof(box_high));
             seen = 1;
         }
+        for (c = 0; c < 3; ++c)
+            meshfix__grow_box(box_low, box_high, meshfix__position(m, m->indices[3 * t + c]));
+    }
+    for (k = 0; k < 3; ++k) {
+        low[k] = (double)box_low[k];
+        high[k] = (double)box_high[k];
     }
     for (k = 0; k < 3; ++k) {
         b->center[k] = 0.5 * (low[k] + high[k]);
@@ -2504,11 +2511,20 @@ MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__bvh *b, const meshfix
 }
 
 #define MESHFIX__BINS 12
-/* A leaf holds up to a block's worth of slots: an eight-wide test costs
-   the same for one triangle as for eight, and leaves of eight put a level
-   fewer of nodes on a ray's path than leaves of four (measured: 3-7%
-   faster on small meshes, 16-28% on a million triangles). */
-#define MESHFIX__LEAF 8
+/* A range of up to three blocks' worth of slots is not split into nodes:
+   an eight-wide test costs the same for one triangle as for eight, and a
+   range of 9 to 16 slots split in two leaves took a node of two children,
+   a load of four cache lines, where its triangles take two block tests.
+   Leaves of eight put a level fewer of nodes on a ray's path than leaves
+   of four (3-7% faster on small meshes, 16-28% on a million triangles);
+   of sixteen against eight, the SAH build of head.stl traces 0-5% faster
+   and builds 5-16% faster; of 24 against 16, with a node's free slots
+   filled by halving its leaves of more than MESHFIX__LEAF_SPLIT slots
+   (meshfix__split_leaves), 3-7% faster rays and a 2-3% faster build
+   (measured, one process, the trees side by side). At most 31: a leaf's
+   lanes are a mask of that many bits (meshfix__window_add). */
+#define MESHFIX__LEAF 24
+#define MESHFIX__LEAF_SPLIT 8
 /* slots after the last (the corners array keeps them zero) */
 #define MESHFIX__SLOT_PAD 4
 /* The depth of a tree is bounded, so the fixed stacks always hold it: SAH
@@ -2787,9 +2803,71 @@ typedef struct meshfix__pending {
     meshfix__range range;
 } meshfix__pending;
 
+/* Splits a leaf's slots at the middle of their centroids' widest extent
+   (no bins: binning the leaves cost the build 13% where this costs it
+   under 5%, for the same rays); returns the size of the first half, 0
+   when all the centroids lie on one side. */
+MESHFIX__PRIVATE unsigned int meshfix__split_middle(meshfix__builder *k, unsigned int first, const meshfix__range *r,
+                                                   meshfix__range *left, meshfix__range *right)
+{
+    unsigned int split;
+    int axis = 0, a;
+    for (a = 1; a < 3; ++a)
+        axis = r->centroids[MESHFIX__HIGH + a] - r->centroids[a] >
+                       r->centroids[MESHFIX__HIGH + axis] - r->centroids[axis]
+                   ? a
+                   : axis;
+    split = meshfix__partition(k, first, r->count, axis,
+                               0.5f * (r->centroids[axis] + r->centroids[MESHFIX__HIGH + axis]));
+    if (split == 0 || split == r->count)
+        return 0;
+    meshfix__fit_range(k, first, split, left);
+    meshfix__fit_range(k, first + split, r->count - split, right);
+    return split;
+}
+
+/* The room a node has left once its parts are leaves: its largest leaves
+   of more than a block's worth halved into two leaves each while it
+   lasts. The node is read anyway, so the rays lose nothing and cull more
+   (halving a leaf of a block or less saved no block test). Returns the
+   parts. */
+MESHFIX__PRIVATE int meshfix__split_leaves(meshfix__builder *k, meshfix__pending parts[MESHFIX__WIDE],
+                                          int leaf[MESHFIX__WIDE], int n, int width)
+{
+    int whole[MESHFIX__WIDE], i, best;
+    for (i = 0; i < n; ++i)
+        whole[i] = 0;
+    while (n < width) {
+        float largest = -1.0f;
+        meshfix__range left, right;
+        unsigned int split;
+        for (i = 0, best = -1; i < n; ++i) {
+            float area = meshfix__box_area(parts[i].range.box, parts[i].range.box + MESHFIX__HIGH);
+            if (!whole[i] && parts[i].range.count > MESHFIX__LEAF_SPLIT && area > largest)
+                best = i, largest = area;
+        }
+        if (best < 0)
+            break;
+        split = meshfix__split_middle(k, parts[best].first, &parts[best].range, &left, &right);
+        if (split == 0) {
+            whole[best] = 1; /* its centroids in one point: a leaf as it is */
+            continue;
+        }
+        parts[n].first = parts[best].first + split;
+        parts[n].level = ++parts[best].level;
+        parts[n].range = right;
+        parts[best].range = left;
+        leaf[n] = 1;
+        whole[n] = 0;
+        n++;
+    }
+    return n;
+}
+
 /* Splits a node's range into up to `width` children: the part with the
    largest box is halved (binned SAH) until there are `width`, or none
-   can be halved (leaves). Returns how many. */
+   can be halved (leaves); in a tree over triangles, the slots left then go
+   to halves of its leaves. Returns how many. */
 MESHFIX__PRIVATE int meshfix__split_parts(meshfix__builder *k, const meshfix__pending *p, int width,
                                          meshfix__pending parts[MESHFIX__WIDE], int leaf[MESHFIX__WIDE])
 {
@@ -2821,7 +2899,7 @@ MESHFIX__PRIVATE int meshfix__split_parts(meshfix__builder *k, const meshfix__pe
         leaf[best] = left.count <= k->leaf;
         n++;
     }
-    return n;
+    return k->leaf > 1 ? meshfix__split_leaves(k, parts, leaf, n, width) : n;
 }
 
 /* The parts of a wide node in slot order (insertion sort; ranges do not
@@ -2841,21 +2919,27 @@ MESHFIX__PRIVATE void meshfix__parts_in_slot_order(meshfix__pending parts[MESHFI
     }
 }
 
-/* Builds a tree over slots [first, first + count) into nodes from
-   k->next_node on, depth first (a node's first child's subtree follows
-   it); returns its root. Four-wide nodes into k->nodes, or, when `wide`
-   is given, eight-wide ones there. Deterministic: no randomness, splits
-   depend only on the slots and their order. At most `count` nodes: each
-   has two children or more, but a root over a single leaf; eight-wide,
-   at most meshfix__wide_budget(count). */
-MESHFIX__PRIVATE unsigned int meshfix__build_nodes(meshfix__builder *k, meshfix__wide *wide, unsigned int first,
-                                                  unsigned int count)
+/* A part of slots that a build leaves for later (meshfix__build_top):
+   where its slots start, how many, its level, the child entry that will
+   point at its tree; then the room for its nodes and where they end. */
+typedef struct meshfix__deferred {
+    unsigned int first, count, level, parent;
+    int slot;
+    unsigned int base, end;
+} meshfix__deferred;
+
+/* meshfix__build_nodes from `level` halvings below a root on; parts of
+   `defer` slots or fewer that are not leaves are not built but written to
+   `deferred` (eight-wide trees; defer 0: none), counted in *deferred_count. */
+MESHFIX__PRIVATE unsigned int meshfix__build_top(meshfix__builder *k, meshfix__wide *wide, unsigned int first,
+                                                unsigned int count, unsigned int level, unsigned int defer,
+                                                meshfix__deferred *deferred, unsigned int *deferred_count)
 {
     meshfix__pending stack[(MESHFIX__WIDE - 1) * MESHFIX__BVH_LEVELS + 8], parts[MESHFIX__WIDE];
     unsigned int depth = 1, root = k->next_node;
     int leaf[MESHFIX__WIDE], n, c, width = wide != NULL ? MESHFIX__WIDE : MESHFIX__WIDTH;
     stack[0].first = first;
-    stack[0].level = 0;
+    stack[0].level = level;
     stack[0].parent = MESHFIX__NONE;
     stack[0].slot = 0;
     meshfix__fit_range(k, first, count, &stack[0].range);
@@ -2885,11 +2969,33 @@ MESHFIX__PRIVATE unsigned int meshfix__build_nodes(meshfix__builder *k, meshfix_
                 continue;
             parts[c].parent = index;
             parts[c].slot = c;
+            if (parts[c].range.count <= defer) {
+                meshfix__deferred *d = &deferred[(*deferred_count)++];
+                d->first = parts[c].first;
+                d->count = parts[c].range.count;
+                d->level = parts[c].level;
+                d->parent = index;
+                d->slot = c;
+                continue;
+            }
             MESHFIX_ASSERT(depth < sizeof(stack) / sizeof(stack[0]));
             stack[depth++] = parts[c];
         }
     }
     return root;
+}
+
+/* Builds a tree over slots [first, first + count) into nodes from
+   k->next_node on, depth first (a node's first child's subtree follows
+   it); returns its root. Four-wide nodes into k->nodes, or, when `wide`
+   is given, eight-wide ones there. Deterministic: no randomness, splits
+   depend only on the slots and their order. At most `count` nodes: each
+   has two children or more, but a root over a single leaf; eight-wide,
+   at most meshfix__wide_budget(count). */
+MESHFIX__PRIVATE unsigned int meshfix__build_nodes(meshfix__builder *k, meshfix__wide *wide, unsigned int first,
+                                                  unsigned int count)
+{
+    return meshfix__build_top(k, wide, first, count, 0, 0, NULL, NULL);
 }
 
 /* The four-wide tree of the builder's slots (the tree over shells). */
@@ -2898,23 +3004,30 @@ MESHFIX__PRIVATE unsigned int meshfix__build_tree(meshfix__builder *k, unsigned 
     return meshfix__build_nodes(k, NULL, first, count);
 }
 
-/* The builder's slots [first, end): each triangle's box and centroid. */
-MESHFIX__PRIVATE void meshfix__builder_slots(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
-                                            unsigned int end)
+/* A triangle's builder slot from its corners: its box, then the box's
+   centre as the point it is binned by (against the triangle's centroid:
+   on head.stl 6% fewer nodes and 8% fewer blocks a closest-hit ray,
+   1-6% faster rays, the same build time; measured in one process). */
+MESHFIX__PRIVATE void meshfix__box_slot(const float corners[9], float slot[9])
 {
-    unsigned int i;
     int c;
-    for (i = first; i < end; ++i) {
-        float corners[9], *slot = b->corners + 9 * (size_t)i;
-        meshfix__load_corners(b, m, b->order[i], corners);
-        MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
-        MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
-        meshfix__grow_box(slot, slot + 3, corners + 3);
-        meshfix__grow_box(slot, slot + 3, corners + 6);
-        for (c = 0; c < 3; ++c)
-            slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
-    }
+    MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
+    MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
+    meshfix__grow_box(slot, slot + 3, corners + 3);
+    meshfix__grow_box(slot, slot + 3, corners + 6);
+    for (c = 0; c < 3; ++c)
+        slot[MESHFIX__SLOT_CENTROID + c] = 0.5f * (slot[c] + slot[3 + c]);
 }
+
+/* Asks for the cache line at p ahead of its use, where the compiler can
+   (a hint: nothing changes but the time); MESHFIX__AHEAD: how far ahead
+   a gather asks. */
+#if defined(__GNUC__) || defined(__clang__)
+#define MESHFIX__PREFETCH(p) __builtin_prefetch(p)
+#else
+#define MESHFIX__PREFETCH(p) ((void)0)
+#endif
+#define MESHFIX__AHEAD 16
 
 /* Large units are built the way of HLBVH (Pantaleoni and Luebke, 2010):
    their triangles sorted once by the Morton codes of their centroids, cut
@@ -2925,9 +3038,15 @@ MESHFIX__PRIVATE void meshfix__builder_slots(meshfix__bvh *b, const meshfix__mes
    triangles settles its side with a hundred). Inside the clusters SAH
    where the first version split at the codes' bits (a spatial median):
    the rays' cost is mostly in the lowest levels, which SAH shapes (on a
-   million-triangle sphere 35% faster incoherent rays, on head.stl 18%). */
+   million-triangle sphere 35% faster incoherent rays, on head.stl 18%).
+   Below MESHFIX__MORTON_MIN triangles binned SAH alone builds about as
+   fast (its corners read once, larger leaves) and its tree is the better:
+   against this build at 16-slot leaves, in one process, the 40k sphere
+   builds in 0.95x the time and traces 12-14% faster, head.stl (118k)
+   builds in 1.05x and traces 13-25% faster; on the 1M sphere binned SAH
+   traced 6-13% faster but built in 1.25x the time (one thread each). */
 #ifndef MESHFIX__MORTON_MIN /* the fuzzers lower both to reach these paths with small meshes */
-#define MESHFIX__MORTON_MIN 4096
+#define MESHFIX__MORTON_MIN 262144
 #endif
 #define MESHFIX__CLUSTER 64
 #define MESHFIX__CLUSTER_MOST (2 * MESHFIX__CLUSTER) /* small pieces join a cluster up to this */
@@ -3031,10 +3150,12 @@ MESHFIX__PRIVATE unsigned int meshfix__wide_budget(unsigned int count)
 
 /* Where unit u's nodes start, and the top tree's: a unit of s slots has
    s / 2 + 2 nodes' room, which its tree never fills: its own SAH tree
-   takes at most meshfix__wide_budget(s), about s / 4; a Morton-cluster
-   tree at most the clusters (s / 8 + s / 64 + 1) and their SAH trees
-   (about s / 4 in all). The Morton build's corners wait in that room
-   too (36 bytes a slot, in 128). */
+   takes at most meshfix__wide_budget(s), under s / 5 with leaves of 24; a
+   Morton-cluster tree at most the clusters (s / 24 + s / 64 + 1) and
+   their SAH trees (under s / 5 in all). Both builds' corners wait in that
+   room too (36 bytes a slot, in 128): the Morton build's from its start,
+   before any node is written; the SAH build's at its end, past the most
+   nodes it writes. */
 MESHFIX__PRIVATE unsigned int meshfix__unit_nodes(const meshfix__bvh *b, unsigned int u)
 {
     return b->unit_first[u] / 2 + 2 * u;
@@ -3068,7 +3189,7 @@ MESHFIX__PRIVATE int meshfix__place_ray_trees(size_t *total, meshfix__span *node
    caller's parallel_for runs them side by side when the unit is built on
    its own (never from inside another task), and every chunk writes the
    same bits wherever it runs. */
-#define MESHFIX__MORTON_CHUNKS 64
+#define MESHFIX__BUILD_CHUNKS 64
 #ifndef MESHFIX__PARALLEL_UNIT
 #define MESHFIX__PARALLEL_UNIT 65536 /* triangles from which a unit's own build is parallel */
 #endif
@@ -3084,7 +3205,7 @@ typedef struct meshfix__morton_build {
     unsigned int first, n;          /* the unit's slots */
     unsigned int *order, *codes, *slot_of, *scratch;
     float *slots, *waiting;         /* final corners; corners in triangle order (in the unit's nodes) */
-    float chunk_box[MESHFIX__MORTON_CHUNKS][6];
+    float chunk_box[MESHFIX__BUILD_CHUNKS][6];
     float low[3];
     double scale[3];
     unsigned int clusters, *starts, *ids, *bases; /* cluster c: slots from starts[c], room for nodes from bases[c] */
@@ -3093,19 +3214,6 @@ typedef struct meshfix__morton_build {
     float *cluster_slots;
     int phase;
 } meshfix__morton_build;
-
-/* A triangle's builder slot (its box, then its centroid) from its
-   corners. */
-MESHFIX__PRIVATE void meshfix__box_slot(const float corners[9], float slot[9])
-{
-    int c;
-    MESHFIX_MEMCPY(slot, corners, 3 * sizeof(float));
-    MESHFIX_MEMCPY(slot + 3, corners, 3 * sizeof(float));
-    meshfix__grow_box(slot, slot + 3, corners + 3);
-    meshfix__grow_box(slot, slot + 3, corners + 6);
-    for (c = 0; c < 3; ++c)
-        slot[MESHFIX__SLOT_CENTROID + c] = meshfix__centroid(corners, c);
-}
 
 /* Slot i's corners and triangle into its lane of the blocks. */
 MESHFIX__PRIVATE void meshfix__fill_lane(meshfix__bvh *b, unsigned int i)
@@ -3167,7 +3275,7 @@ MESHFIX__PRIVATE void meshfix__morton_chunk(void *context, size_t chunk)
 {
     meshfix__morton_build *k = (meshfix__morton_build *)context;
     unsigned int total = k->phase >= MESHFIX__BUILD_CLUSTERS ? k->clusters : k->n, i, j;
-    unsigned int per = (total + MESHFIX__MORTON_CHUNKS - 1) / MESHFIX__MORTON_CHUNKS;
+    unsigned int per = (total + MESHFIX__BUILD_CHUNKS - 1) / MESHFIX__BUILD_CHUNKS;
     unsigned int from = (unsigned int)chunk * per, to = from + per < total ? from + per : total;
     int c;
     for (i = from; i < to; ++i) {
@@ -3186,6 +3294,8 @@ MESHFIX__PRIVATE void meshfix__morton_chunk(void *context, size_t chunk)
             k->codes[i] = code;
             k->slot_of[i] = i;
         } else if (k->phase == MESHFIX__BUILD_GATHER) {
+            if (i + MESHFIX__AHEAD < to) /* the corners are read at random */
+                MESHFIX__PREFETCH(k->waiting + 9 * (size_t)k->slot_of[i + MESHFIX__AHEAD]);
             k->order[i] = k->scratch[k->slot_of[i]];
             MESHFIX_MEMCPY(k->slots + 9 * (size_t)i, k->waiting + 9 * (size_t)k->slot_of[i], 9 * sizeof(float));
         } else if (k->phase == MESHFIX__BUILD_CLUSTERS) {
@@ -3214,7 +3324,7 @@ MESHFIX__PRIVATE void meshfix__morton_chunk(void *context, size_t chunk)
 MESHFIX__PRIVATE void meshfix__morton_phase(meshfix__morton_build *k, int phase, const meshfix_options *parallel)
 {
     k->phase = phase;
-    meshfix__run_tasks(parallel, meshfix__morton_chunk, k, MESHFIX__MORTON_CHUNKS);
+    meshfix__run_tasks(parallel, meshfix__morton_chunk, k, MESHFIX__BUILD_CHUNKS);
 }
 
 /* The cluster whose nodes started at `node` (as built): the last whose
@@ -3346,12 +3456,12 @@ MESHFIX__PRIVATE unsigned int meshfix__morton_tree(meshfix__bvh *b, const meshfi
     /* the corners wait where the unit's nodes will be, until they are
        moved into code order */
     k.waiting = (float *)(void *)(b->nodes + base);
-    for (chunk = 0; chunk < MESHFIX__MORTON_CHUNKS; ++chunk)
+    for (chunk = 0; chunk < MESHFIX__BUILD_CHUNKS; ++chunk)
         meshfix__empty_box(k.chunk_box[chunk]);
     meshfix__morton_phase(&k, MESHFIX__BUILD_CENTROIDS, parallel);
     for (c = 0; c < 3; ++c) {
         k.low[c] = 1e30f, high[c] = -1e30f;
-        for (chunk = 0; chunk < MESHFIX__MORTON_CHUNKS; ++chunk) {
+        for (chunk = 0; chunk < MESHFIX__BUILD_CHUNKS; ++chunk) {
             k.low[c] = k.chunk_box[chunk][c] < k.low[c] ? k.chunk_box[chunk][c] : k.low[c];
             high[c] = k.chunk_box[chunk][3 + c] > high[c] ? k.chunk_box[chunk][3 + c] : high[c];
         }
@@ -3420,33 +3530,188 @@ MESHFIX__PRIVATE int meshfix__prepare_bvh(meshfix__bvh *b, const meshfix__mesh *
     return 1;
 }
 
-/* The tree of slots [first, end) by binned SAH alone, from node `base`
-   on; returns its root. The slots hold each triangle's box and centroid
-   while it is built, its corners afterwards. */
-MESHFIX__PRIVATE unsigned int meshfix__sah_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
-                                               unsigned int end, unsigned int base)
+/* A unit's SAH build in phases, as the Morton build's: each a loop over
+   equal chunks of its slots, or over the parts it left for later, that
+   touch only their own slots and nodes. A unit of MESHFIX__PARALLEL_UNIT
+   slots or more is built as its top, then every part of a quarter of its
+   slots or fewer as a task of its own, whether the caller runs tasks side
+   by side or not: the same tree either way (a part's tree is the tree its
+   slots would have had in place, only its nodes lie elsewhere). */
+#define MESHFIX__SAH_SLOTS 0  /* corners into waiting, each triangle's box and centroid into its slot */
+#define MESHFIX__SAH_PARTS 1  /* a part's tree a task */
+#define MESHFIX__SAH_GATHER 2 /* corners and triangles in the tree's order, then into the blocks */
+
+typedef struct meshfix__sah_build {
+    meshfix__bvh *b;
+    const meshfix__mesh *m;
+    unsigned int first, n;           /* the unit's slots */
+    unsigned int *ids, *triangles;   /* per slot: where its corners wait; the unit's triangles as given */
+    float *slots, *waiting;          /* the builder's slots; the corners in the order given */
+    meshfix__deferred *parts;        /* what the top left for later */
+    unsigned int part_count;
+    int phase;
+} meshfix__sah_build;
+
+/* The builder over the unit's slots, its nodes from `next_node` on. */
+MESHFIX__PRIVATE void meshfix__sah_builder(const meshfix__sah_build *k, unsigned int next_node, meshfix__builder *sub)
 {
-    meshfix__builder k;
-    unsigned int i, root;
-    meshfix__builder_slots(b, m, first, end);
-    k.slots = b->corners;
-    k.ids = b->order;
-    k.nodes = NULL;
-    k.next_node = base;
-    k.leaf = MESHFIX__LEAF;
-    root = meshfix__build_nodes(&k, b->nodes, first, end - first);
-    MESHFIX_ASSERT(k.next_node - base <= meshfix__wide_budget(end - first));
-    for (i = first; i < end; ++i)
-        meshfix__load_corners(b, m, b->order[i], b->corners + 9 * (size_t)i);
-    meshfix__fill_lanes(b, first, end);
+    sub->slots = k->slots;
+    sub->ids = k->ids;
+    sub->nodes = NULL;
+    sub->next_node = next_node;
+    sub->leaf = MESHFIX__LEAF;
+}
+
+/* Slots [from, to) of the unit: their triangles' corners into waiting,
+   each one's box and centroid into its slot. */
+MESHFIX__PRIVATE void meshfix__sah_slots(const meshfix__sah_build *k, unsigned int from, unsigned int to)
+{
+    const unsigned int *order = k->b->order + k->first;
+    float *waiting = k->waiting, *slots = k->slots;
+    unsigned int i;
+    for (i = from; i < to; ++i) {
+        k->triangles[i] = order[i];
+        k->ids[i] = i;
+        meshfix__load_corners(k->b, k->m, order[i], waiting + 9 * (size_t)i);
+        meshfix__box_slot(waiting + 9 * (size_t)i, slots + 9 * (size_t)i);
+    }
+}
+
+/* Slots [from, to) in the tree's order: their corners, read at random
+   (asked for a few slots ahead), and triangles, then into the blocks. */
+MESHFIX__PRIVATE void meshfix__sah_gather(const meshfix__sah_build *k, unsigned int from, unsigned int to)
+{
+    const unsigned int *ids = k->ids, *triangles = k->triangles;
+    const float *waiting = k->waiting;
+    unsigned int *order = k->b->order + k->first, i;
+    float *slots = k->slots;
+    for (i = from; i < to; ++i) {
+        if (i + MESHFIX__AHEAD < to)
+            MESHFIX__PREFETCH(waiting + 9 * (size_t)ids[i + MESHFIX__AHEAD]);
+        MESHFIX_MEMCPY(slots + 9 * (size_t)i, waiting + 9 * (size_t)ids[i], 9 * sizeof(float));
+        order[i] = triangles[ids[i]];
+    }
+    meshfix__fill_lanes(k->b, k->first + from, k->first + to);
+}
+
+/* Part p's tree, in the room from its base on. */
+MESHFIX__PRIVATE void meshfix__sah_part(const meshfix__sah_build *k, meshfix__deferred *d)
+{
+    meshfix__builder sub;
+    meshfix__sah_builder(k, d->base, &sub);
+    meshfix__build_top(&sub, k->b->nodes, d->first, d->count, d->level, 0, NULL, NULL);
+    MESHFIX_ASSERT(sub.next_node - d->base <= meshfix__wide_budget(d->count));
+    d->end = sub.next_node;
+}
+
+MESHFIX__PRIVATE void meshfix__sah_chunk(void *context, size_t chunk)
+{
+    meshfix__sah_build *k = (meshfix__sah_build *)context;
+    unsigned int per = (k->n + MESHFIX__BUILD_CHUNKS - 1) / MESHFIX__BUILD_CHUNKS;
+    unsigned int from = (unsigned int)chunk * per, to = from + per < k->n ? from + per : k->n;
+    if (k->phase == MESHFIX__SAH_PARTS)
+        meshfix__sah_part(k, &k->parts[chunk]);
+    else if (from >= to)
+        return;
+    else if (k->phase == MESHFIX__SAH_SLOTS)
+        meshfix__sah_slots(k, from, to);
+    else
+        meshfix__sah_gather(k, from, to);
+}
+
+/* A phase as tasks where the unit is built on the caller's threads, else
+   in one go (a unit of a few triangles, of which a model may have
+   thousands, paid for 64 calls a phase); the same bits either way. */
+MESHFIX__PRIVATE void meshfix__sah_phase(meshfix__sah_build *k, int phase, size_t tasks, const meshfix_options *parallel)
+{
+    k->phase = phase;
+    if (k->n >= MESHFIX__PARALLEL_UNIT)
+        meshfix__run_tasks(parallel, meshfix__sah_chunk, k, tasks);
+    else if (phase == MESHFIX__SAH_SLOTS)
+        meshfix__sah_slots(k, 0, k->n);
+    else if (phase == MESHFIX__SAH_GATHER)
+        meshfix__sah_gather(k, 0, k->n);
+}
+
+/* Moves the parts' nodes together from node `next` on (the top's end), in
+   part order, and points the top at them: each was built in the room of
+   its bound. Nodes only move down, so a forward copy is safe. Returns the
+   end of the unit's nodes. */
+MESHFIX__PRIVATE unsigned int meshfix__pack_parts(meshfix__sah_build *k, unsigned int next)
+{
+    meshfix__wide *nodes = k->b->nodes;
+    unsigned int p, node, used, delta;
+    int i;
+    for (p = 0; p < k->part_count; ++p) {
+        const meshfix__deferred *d = &k->parts[p];
+        used = d->end - d->base;
+        delta = d->base - next;
+        for (node = next; node < next + used; ++node) {
+            nodes[node] = nodes[node + delta];
+            for (i = 0; i < MESHFIX__WIDE; ++i)
+                if (nodes[node].inner & (1u << i))
+                    nodes[node].child[i] -= delta;
+        }
+        meshfix__link_wide(&nodes[d->parent], d->slot, next, 0);
+        next += used;
+    }
+    return next;
+}
+
+/* The tree of slots [first, end) by binned SAH alone, from node `base`
+   on, in the unit's room for nodes that ends at `room_end`; `parallel`:
+   the options whose parallel_for may run the phases (NULL: here). Returns
+   its root. The slots hold each triangle's box and centroid while it is
+   built. Its corners are read from the mesh once: they wait at the end of
+   the room (the nodes take under half of it) and move into the tree's
+   order after (reading them again was a tenth of the build). */
+MESHFIX__PRIVATE unsigned int meshfix__sah_tree(meshfix__bvh *b, const meshfix__mesh *m, unsigned int first,
+                                               unsigned int end, unsigned int base, unsigned int room_end,
+                                               const meshfix_options *parallel)
+{
+    meshfix__sah_build k;
+    meshfix__builder top;
+    unsigned int n = end - first, root, node, next, p;
+    int c;
+    k.b = b;
+    k.m = m;
+    k.first = first;
+    k.n = n;
+    k.ids = b->sort + 4 * (size_t)first;
+    k.triangles = k.ids + n;
+    k.parts = (meshfix__deferred *)(void *)(k.triangles + n); /* the rest of the unit's scratch */
+    k.part_count = 0;
+    k.slots = b->corners + 9 * (size_t)first;
+    k.waiting = (float *)(void *)(b->nodes + room_end) - 9 * (size_t)n;
+    meshfix__sah_phase(&k, MESHFIX__SAH_SLOTS, MESHFIX__BUILD_CHUNKS, parallel);
+    meshfix__sah_builder(&k, base, &top);
+    root = meshfix__build_top(&top, b->nodes, 0, n, 0, n >= MESHFIX__PARALLEL_UNIT ? n / 4 : 0, k.parts,
+                              &k.part_count);
+    /* parts have more than a leaf's worth of slots each */
+    MESHFIX_ASSERT(k.part_count * sizeof(meshfix__deferred) <= 2 * (size_t)n * sizeof(unsigned int));
+    for (p = 0, next = top.next_node; p < k.part_count; ++p) {
+        k.parts[p].base = next;
+        next += meshfix__wide_budget(k.parts[p].count);
+    }
+    MESHFIX_ASSERT(next <= room_end &&
+                   (size_t)(room_end - next) * sizeof(meshfix__wide) >= 9 * (size_t)n * sizeof(float));
+    meshfix__sah_phase(&k, MESHFIX__SAH_PARTS, k.part_count, parallel);
+    next = meshfix__pack_parts(&k, top.next_node);
+    MESHFIX_ASSERT(next - base <= meshfix__wide_budget(n) + k.part_count);
+    for (node = base; node < next; ++node)
+        for (c = 0; c < MESHFIX__WIDE; ++c)
+            if (b->nodes[node].leaves & (1u << c))
+                b->nodes[node].child[c] += first;
+    meshfix__sah_phase(&k, MESHFIX__SAH_GATHER, MESHFIX__BUILD_CHUNKS, parallel);
     return root;
 }
 
 /* How a unit's tree is built: binned SAH below MESHFIX__MORTON_MIN slots
-   and Morton clusters from there (AUTO), or binned SAH whatever the size
-   (the bench and the tests compare them). */
+   and Morton clusters from there (AUTO), or one of the two whatever the
+   size (the bench and the tests compare them). */
 #define MESHFIX__BUILD_AUTO 0
 #define MESHFIX__BUILD_SAH 1
+#define MESHFIX__BUILD_MORTON 2
 
 /* The tree of unit u, built the first time it is asked for; NONE when the
    unit has no triangle with an area. `parallel`: options whose
@@ -3458,9 +3723,10 @@ MESHFIX__PRIVATE unsigned int meshfix__build_unit_by(meshfix__bvh *b, const mesh
     if (b->unit_root[u] != MESHFIX__NONE || first == end)
         return b->unit_root[u];
     /* each builder fills the unit's blocks as its corners become final */
-    b->unit_root[u] = builder == MESHFIX__BUILD_AUTO && end - first >= MESHFIX__MORTON_MIN
+    b->unit_root[u] = builder == MESHFIX__BUILD_MORTON ||
+                              (builder == MESHFIX__BUILD_AUTO && end - first >= MESHFIX__MORTON_MIN)
                           ? meshfix__morton_tree(b, m, first, end, base, parallel)
-                          : meshfix__sah_tree(b, m, first, end, base);
+                          : meshfix__sah_tree(b, m, first, end, base, meshfix__unit_nodes(b, u + 1), parallel);
     return b->unit_root[u];
 }
 
@@ -3611,7 +3877,9 @@ MESHFIX__PRIVATE int meshfix__hit_triangle(const meshfix__ray *r, const float *c
 }
 
 /* What a traversal looks for: the first hit, the closest, or the number of
-   surfaces crossed (a parity). */
+   surfaces crossed (a parity). The library asks for the first and the
+   count; the closest (and its distance) is what the bench and the tests
+   measure the tree by against Embree and brute force. */
 #define MESHFIX__ANY_HIT 0
 #define MESHFIX__CLOSEST_HIT 1
 #define MESHFIX__COUNT_HITS 2
@@ -3620,8 +3888,7 @@ typedef struct meshfix__query {
     int mode;
     unsigned int skip;      /* a triangle to ignore (the ray's own), or NONE */
     unsigned int hits;      /* COUNT_HITS: crossings, each counted once */
-    unsigned int triangle;  /* ANY / CLOSEST: the triangle hit */
-    float t;
+    float t;                /* ANY / CLOSEST: the distance of the hit */
 } meshfix__query;
 
 /* Crossing counts must count a ray through a shared edge or vertex once:
@@ -4035,7 +4302,6 @@ MESHFIX__INLINE_ALWAYS static int meshfix__take_hits(const meshfix__leaf_block *
             meshfix__count_crossing(crossings, t[i], zeros[i]);
             continue;
         }
-        q->triangle = id;
         q->t = t[i];
         q->hits = 1;
         if (q->mode == MESHFIX__ANY_HIT)
@@ -4190,7 +4456,6 @@ MESHFIX__INLINE_ALWAYS static int meshfix__traverse(const meshfix__bvh *b, unsig
     meshfix__crossings crossings;
     crossings.halves = crossings.vertex_count = 0;
     q->hits = 0;
-    q->triangle = MESHFIX__NONE;
     while (node != MESHFIX__NONE) {
         const meshfix__wide *n = &b->nodes[node];
         float entry[MESHFIX__WIDE];

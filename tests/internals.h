@@ -77,22 +77,21 @@ static int whole_unit(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena 
     return meshfix__prepare_bvh(bvh, m, bvh_arena, units, 1);
 }
 
-/* The ray tree over that unit, as the library builds it or (sah_only)
-   by binned SAH whatever its size (the builder the library keeps for
-   units below MESHFIX__MORTON_MIN triangles); returns its root. */
+/* The ray tree over that unit, as the library builds it (builder
+   MESHFIX__BUILD_AUTO), or by binned SAH (MESHFIX__BUILD_SAH: the
+   library's below MESHFIX__MORTON_MIN triangles) or Morton clusters
+   (MESHFIX__BUILD_MORTON) whatever its size; returns its root. */
 static unsigned int whole_tree_built(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena,
-                                     unsigned int *units, int sah_only)
+                                     unsigned int *units, int builder)
 {
     if (!whole_unit(bvh, m, bvh_arena, units) || bvh->count == 0)
         return MESHFIX__NONE;
-    if (!sah_only)
-        return meshfix__unit_tree(bvh, m, 0);
-    return meshfix__build_unit_by(bvh, m, 0, NULL, MESHFIX__BUILD_SAH);
+    return meshfix__build_unit_by(bvh, m, 0, NULL, builder);
 }
 
 static unsigned int whole_tree(meshfix__bvh *bvh, const meshfix__mesh *m, meshfix__arena *bvh_arena,
                                unsigned int *units)
 {
-    return whole_tree_built(bvh, m, bvh_arena, units, 0);
+    return whole_tree_built(bvh, m, bvh_arena, units, MESHFIX__BUILD_AUTO);
 }
 #endif

@@ -4,7 +4,7 @@
 // when the tree changes (`build/bench --only rays`). It uses meshfix's
 // internals the way tests/internals.h does, by their meaning only:
 //   whole_tree(&bvh, &mesh, &arena, units)       the tree over every
-//       triangle with an area, as one unit (frame fit + slots + binned SAH);
+//       triangle with an area, as one unit (frame fit + slots + the library's builder for its size);
 //   meshfix__frame_float(&bvh, p, out)           a model point into the
 //       tree's frame (a translation and a power-of-two scale);
 //   meshfix__setup_ray / meshfix__trace          with query.mode
@@ -153,11 +153,12 @@ struct MeshfixTree {
         block = bind_mesh(&mesh, &o, g.indices, g.index_count, g.positions, g.vertex_count);
         units.resize(g.index_count / 3 + 1);
     }
-    bool sah_only = false; // binned SAH whatever the size (the library's builder below MESHFIX__MORTON_MIN)
+    // MESHFIX__BUILD_AUTO: as the library builds it; MESHFIX__BUILD_SAH or _MORTON: that builder whatever the size
+    int builder = MESHFIX__BUILD_AUTO;
     void build()
     {
-        root = sah_only ? whole_tree_built(&bvh, &mesh, &arena, units.data(), 1)
-                        : whole_tree(&bvh, &mesh, &arena, units.data());
+        root = builder == MESHFIX__BUILD_AUTO ? whole_tree(&bvh, &mesh, &arena, units.data())
+                                              : whole_tree_built(&bvh, &mesh, &arena, units.data(), builder);
     }
     void release()
     {
@@ -505,35 +506,37 @@ static int bench_mesh(const char *name, const mio_mesh &g, const Settings &s, in
                 name, triangles, runs, min_med(build, 1e3).c_str());
 #endif
     {
-        // the other builder on the same triangles: what the Morton clusters trade
+        // the other builder on the same triangles: what the library's choice at this size trades
+        bool morton = triangles >= MESHFIX__MORTON_MIN;
+        const char *library = morton ? "Morton clusters" : "binned SAH", *other = morton ? "binned SAH" : "Morton clusters";
         MeshfixTree sah(g);
-        sah.sah_only = true;
+        sah.builder = morton ? MESHFIX__BUILD_SAH : MESHFIX__BUILD_MORTON;
         Timing sah_build = time_runs(runs, [&] {
             sah.release();
             sah.build();
         });
         Timing sah_rays = time_runs(runs, [&] { meshfix_trace_all(sah, sets[0], MESHFIX__CLOSEST_HIT, nullptr); });
         Timing lib_rays = time_runs(runs, [&] { meshfix_trace_all(tree, sets[0], MESHFIX__CLOSEST_HIT, nullptr); });
-        std::printf("The library's tree (%s) against binned SAH over the same triangles: build %s ms vs %s ms; "
+        std::printf("The library's tree (%s) against %s over the same triangles: build %s ms vs %s ms; "
                     "incoherent closest hit %s vs %s Mrays/s\n\n",
-                    triangles >= MESHFIX__MORTON_MIN ? "Morton clusters" : "binned SAH", min_med(build, 1e3).c_str(),
+                    library, other, min_med(build, 1e3).c_str(),
                     min_med(sah_build, 1e3).c_str(), rate(double(sets[0].count()), lib_rays, 1e6).c_str(),
                     rate(double(sets[0].count()), sah_rays, 1e6).c_str());
         char text[256];
         std::snprintf(text, sizeof(text),
-                      "rays, %s: the library's tree builds in %s the time of binned SAH and traces incoherent "
+                      "rays, %s: the library's tree (%s) builds in %s the time of %s and traces incoherent "
                       "closest hits at %s its rate",
-                      name, ratio(build.min, sah_build.min).c_str(), ratio(sah_rays.min, lib_rays.min).c_str());
+                      name, library, ratio(build.min, sah_build.min).c_str(), other,
+                      ratio(sah_rays.min, lib_rays.min).c_str());
         summary->push_back(text);
         // build time and memory per triangle of each tree
         TreeBytes lib = tree_bytes(tree), binned = tree_bytes(sah);
         double per = 1e9 / double(triangles);
         std::printf("| tree | build ms | build ns / triangle | nodes | bytes / triangle (what rays read) | "
                     "bytes / triangle (reserved) |\n|---|---:|---:|---:|---:|---:|\n");
-        std::printf("| meshfix (%s) | %s | %.0f | %zu | %.1f | %.1f |\n",
-                    triangles >= MESHFIX__MORTON_MIN ? "Morton clusters" : "binned SAH", min_med(build, 1e3).c_str(),
+        std::printf("| meshfix (%s) | %s | %.0f | %zu | %.1f | %.1f |\n", library, min_med(build, 1e3).c_str(),
                     build.min * per, lib.nodes, double(lib.used) / triangles, double(lib.reserved) / triangles);
-        std::printf("| meshfix binned SAH | %s | %.0f | %zu | %.1f | %.1f |\n", min_med(sah_build, 1e3).c_str(),
+        std::printf("| meshfix %s | %s | %.0f | %zu | %.1f | %.1f |\n", other, min_med(sah_build, 1e3).c_str(),
                     sah_build.min * per, binned.nodes, double(binned.used) / triangles,
                     double(binned.reserved) / triangles);
 #ifdef MESHFIX_BENCH_EMBREE
