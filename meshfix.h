@@ -2826,6 +2826,21 @@ MESHFIX__PRIVATE unsigned int meshfix__split_middle(meshfix__builder *k, unsigne
     return split;
 }
 
+/* The part with the largest box among those not `done` and of more than
+   `more_than` slots; -1 when there is none. */
+MESHFIX__PRIVATE int meshfix__largest_part(const meshfix__pending parts[MESHFIX__WIDE], const int done[MESHFIX__WIDE],
+                                          int n, unsigned int more_than)
+{
+    float largest = -1.0f;
+    int i, best = -1;
+    for (i = 0; i < n; ++i) {
+        float area = meshfix__box_area(parts[i].range.box, parts[i].range.box + MESHFIX__HIGH);
+        if (!done[i] && parts[i].range.count > more_than && area > largest)
+            best = i, largest = area;
+    }
+    return best;
+}
+
 /* The room a node has left once its parts are leaves: its largest leaves
    of more than a block's worth halved into two leaves each while it
    lasts. The node is read anyway, so the rays lose nothing and cull more
@@ -2838,14 +2853,9 @@ MESHFIX__PRIVATE int meshfix__split_leaves(meshfix__builder *k, meshfix__pending
     for (i = 0; i < n; ++i)
         whole[i] = 0;
     while (n < width) {
-        float largest = -1.0f;
         meshfix__range left, right;
         unsigned int split;
-        for (i = 0, best = -1; i < n; ++i) {
-            float area = meshfix__box_area(parts[i].range.box, parts[i].range.box + MESHFIX__HIGH);
-            if (!whole[i] && parts[i].range.count > MESHFIX__LEAF_SPLIT && area > largest)
-                best = i, largest = area;
-        }
+        best = meshfix__largest_part(parts, whole, n, MESHFIX__LEAF_SPLIT);
         if (best < 0)
             break;
         split = meshfix__split_middle(k, parts[best].first, &parts[best].range, &left, &right);
@@ -2871,18 +2881,13 @@ MESHFIX__PRIVATE int meshfix__split_leaves(meshfix__builder *k, meshfix__pending
 MESHFIX__PRIVATE int meshfix__split_parts(meshfix__builder *k, const meshfix__pending *p, int width,
                                          meshfix__pending parts[MESHFIX__WIDE], int leaf[MESHFIX__WIDE])
 {
-    int n = 1, i, best;
+    int n = 1, best;
     parts[0] = *p;
     leaf[0] = p->range.count <= k->leaf;
     while (n < width) {
-        float largest = -1.0f;
         meshfix__range left, right;
         unsigned int split;
-        for (i = 0, best = -1; i < n; ++i) {
-            float area = meshfix__box_area(parts[i].range.box, parts[i].range.box + MESHFIX__HIGH);
-            if (!leaf[i] && area > largest)
-                best = i, largest = area;
-        }
+        best = meshfix__largest_part(parts, leaf, n, 0);
         if (best < 0)
             break;
         split = meshfix__split(k, parts[best].first, &parts[best].range, parts[best].level < MESHFIX__BVH_SAH_LEVELS,
