@@ -133,9 +133,10 @@
             SDF       the area-weighted vote of the SDF gradient over the
                       patch (or, sdf.mode, each triangle on its own).
           Rays: a two-level tree (per unit, built on demand, then over the
-          units), four-wide nodes by binned SAH, SIMD box and triangle
-          tests, the watertight ray/triangle test, so crossing counts of
-          closed surfaces are exact parities.
+          units), eight-wide nodes by binned SAH (large units from Morton
+          clusters), SIMD box and triangle tests, the watertight
+          ray/triangle test, so crossing counts of closed surfaces are
+          exact parities.
        7. write: indices to destination with the flipped triangles' last
           two swapped, then the outputs and the report.
        Time: O(n log n) worst case, linear on ordinary meshes; the ray
