@@ -2511,6 +2511,12 @@ MESHFIX__PRIVATE void meshfix__load_corners(const meshfix__bvh *b, const meshfix
         meshfix__frame_vertex(b, m, sorted[c], corners + 3 * c);
 }
 
+/* ===== >>trees ===== */
+
+/* Building the trees: a unit's by binned SAH (large ones from Morton
+   clusters), in phases a caller's parallel_for may run, and the tree over
+   the units; their room in the plan. */
+
 #define MESHFIX__BINS 12
 /* A range of up to three blocks' worth of slots is not split into nodes:
    an eight-wide test costs the same for one triangle as for eight, and a
@@ -3800,6 +3806,12 @@ MESHFIX__PRIVATE unsigned int meshfix__top_tree(meshfix__bvh *b, const meshfix__
         }
     return b->top;
 }
+
+/* ===== >>traverse ===== */
+
+/* Walking the trees: a ray's setup, the watertight triangle test, the
+   SIMD box and leaf tests, and the three queries (any hit, the closest
+   hit, every crossing counted), and the walk of a tree over boxes. */
 
 /* A direction component of 0 would make its inverse infinite and a slab
    test 0 * inf; it is nudged to +-1e-30 instead, so every value in a
