@@ -4826,18 +4826,29 @@ MESHFIX__PRIVATE void meshfix__sample_until_settled(meshfix__votes *votes, unsig
     }
 }
 
+/* The bounds of the size of the mean vote: |mean| -+ sigma * error. */
+MESHFIX__PRIVATE void meshfix__size_bounds(const meshfix__votes *votes, double sigma, double *low, double *high)
+{
+    double mean = MESHFIX_FABS(meshfix__vote_mean(votes)), error = meshfix__vote_error(votes);
+    *low = mean - sigma * error;
+    *high = mean + sigma * error;
+}
+
+MESHFIX__PRIVATE int meshfix__level_reached(const meshfix__votes *votes, double sigma, double level)
+{
+    double low, high;
+    meshfix__size_bounds(votes, sigma, &low, &high);
+    return low >= level;
+}
+
 /* Whether the size of the mean vote is known to be at least `level` or
    known to be less (within its bounds): either way, more votes would not
    change which. */
 MESHFIX__PRIVATE int meshfix__level_known(const meshfix__votes *votes, double sigma, double level)
 {
-    double mean = MESHFIX_FABS(meshfix__vote_mean(votes)), error = meshfix__vote_error(votes);
-    return mean - sigma * error >= level || mean + sigma * error < level;
-}
-
-MESHFIX__PRIVATE int meshfix__level_reached(const meshfix__votes *votes, double sigma, double level)
-{
-    return MESHFIX_FABS(meshfix__vote_mean(votes)) - sigma * meshfix__vote_error(votes) >= level;
+    double low, high;
+    meshfix__size_bounds(votes, sigma, &low, &high);
+    return low >= level || high < level;
 }
 
 /* A side is inside when its ray crosses the surfaces asked about an odd
@@ -7864,8 +7875,8 @@ MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, cons
             r->triangles_flipped += flipped;
             r->patches_flipped += (size_t)(flipped != 0);
         }
-        volume = policy < 0 ? s.volume_given : turn ? -s.volume_relative : s.volume_relative;
         given = s.volume_given;
+        volume = policy < 0 ? given : turn ? -s.volume_relative : s.volume_relative;
         if (!meshfix__is_closed_orientable(m, p))
             volume = given = 0.0;
         r->signed_volume_before += given;
@@ -8208,10 +8219,10 @@ MESHFIX__PRIVATE meshfix_verdict meshfix__verdict_before(const meshfix_report *r
 
 MESHFIX__PRIVATE meshfix_verdict meshfix__verdict(const meshfix_report *r, int policy)
 {
-    if (r->mesh.components_non_orientable != 0)
-        return MESHFIX_VERDICT_NOT_ORIENTABLE;
     if (policy < 0)
         return meshfix__verdict_before(r);
+    if (r->mesh.components_non_orientable != 0)
+        return MESHFIX_VERDICT_NOT_ORIENTABLE;
     if (r->patches_doubtful != 0)
         return MESHFIX_VERDICT_DOUBTFUL;
     return r->triangles_flipped != 0 ? MESHFIX_VERDICT_REPAIRED : MESHFIX_VERDICT_CLEAN;
