@@ -4112,25 +4112,9 @@ MESHFIX__INLINE_ALWAYS static unsigned int meshfix__lanes_half_sse(const meshfix
     return mask | edge << 4; /* the edge lanes, for the caller to test */
 }
 
-MESHFIX__INLINE_ALWAYS static unsigned int meshfix__lanes_sse(const meshfix__ray *r, const meshfix__leaf_block *k,
-                                                              unsigned int want, float t[MESHFIX__WIDE],
-                                                              int zeros[MESHFIX__WIDE])
-{
-    unsigned int mask = 0, edge = 0, low, high, i;
-    if ((want & 15u) != 0) {
-        low = meshfix__lanes_half_sse(r, k, 0, want & 15u, t);
-        mask |= low & 15u, edge |= low >> 4;
-    }
-    if ((want >> 4) != 0) {
-        high = meshfix__lanes_half_sse(r, k, 4, want >> 4, t + 4);
-        mask |= (high & 15u) << 4, edge |= (high >> 4) << 4;
-    }
-    for (i = 0; i < MESHFIX__WIDE; ++i)
-        zeros[i] = 0;
-    return mask | (edge != 0 ? meshfix__edge_lanes(r, k, edge, t, zeros) : 0u);
-}
 #define meshfix__boxes_simd meshfix__boxes_sse
-#define meshfix__lanes_simd meshfix__lanes_sse
+#define meshfix__lanes_half_simd meshfix__lanes_half_sse
+#define MESHFIX__LANES_FUNCTION MESHFIX__INLINE_ALWAYS static
 #elif MESHFIX__NEON
 MESHFIX__PRIVATE unsigned int meshfix__movemask_neon(uint32x4_t x)
 {
@@ -4202,24 +4186,33 @@ MESHFIX__PRIVATE unsigned int meshfix__lanes_half_neon(const meshfix__ray *r, co
     return mask | edge << 4;
 }
 
-MESHFIX__PRIVATE unsigned int meshfix__lanes_neon(const meshfix__ray *r, const meshfix__leaf_block *k, unsigned int want,
-                                                 float t[MESHFIX__WIDE], int zeros[MESHFIX__WIDE])
+#define meshfix__boxes_simd meshfix__boxes_neon
+#define meshfix__lanes_half_simd meshfix__lanes_half_neon
+#define MESHFIX__LANES_FUNCTION MESHFIX__PRIVATE
+#endif
+
+#if MESHFIX__SSE || MESHFIX__NEON
+/* A block's eight lanes as two halves of four (SSE2 and NEON: the
+   first path's test is inlined, as it was measured to want; NEON's is
+   a call, as it has been). The lanes with an edge function exactly 0
+   go to the scalar test. */
+MESHFIX__LANES_FUNCTION unsigned int meshfix__lanes_simd(const meshfix__ray *r, const meshfix__leaf_block *k,
+                                                         unsigned int want, float t[MESHFIX__WIDE],
+                                                         int zeros[MESHFIX__WIDE])
 {
     unsigned int mask = 0, edge = 0, low, high, i;
     if ((want & 15u) != 0) {
-        low = meshfix__lanes_half_neon(r, k, 0, want & 15u, t);
+        low = meshfix__lanes_half_simd(r, k, 0, want & 15u, t);
         mask |= low & 15u, edge |= low >> 4;
     }
     if ((want >> 4) != 0) {
-        high = meshfix__lanes_half_neon(r, k, 4, want >> 4, t + 4);
+        high = meshfix__lanes_half_simd(r, k, 4, want >> 4, t + 4);
         mask |= (high & 15u) << 4, edge |= (high >> 4) << 4;
     }
     for (i = 0; i < MESHFIX__WIDE; ++i)
         zeros[i] = 0;
     return mask | (edge != 0 ? meshfix__edge_lanes(r, k, edge, t, zeros) : 0u);
 }
-#define meshfix__boxes_simd meshfix__boxes_neon
-#define meshfix__lanes_simd meshfix__lanes_neon
 #else
 #define meshfix__boxes_simd meshfix__boxes_scalar
 #define meshfix__lanes_simd meshfix__lanes_scalar
