@@ -747,6 +747,74 @@ MESHFIX__PRIVATE void meshfix__run_tasks(const meshfix_options *o, void (*task)(
             task(context, i);
 }
 
+/* A stage of MESHFIX__PARALLEL_UNIT items or more (triangles, vertices,
+   slots) runs over MESHFIX__STAGE_CHUNKS equal chunks of them, tasks of
+   meshfix__run_tasks; a smaller one is one chunk. The chunks depend on
+   the count alone, never on the threads, and what they add up is added
+   in chunk order: the same bits whether they run side by side or not. */
+#ifndef MESHFIX__PARALLEL_UNIT
+#define MESHFIX__PARALLEL_UNIT 65536
+#endif
+#define MESHFIX__STAGE_CHUNKS 32
+
+MESHFIX__PRIVATE size_t meshfix__stage_chunks(size_t n)
+{
+    return n >= MESHFIX__PARALLEL_UNIT ? MESHFIX__STAGE_CHUNKS : 1;
+}
+
+/* The first item of chunk i of `chunks` equal chunks of n (chunk `chunks`: n). */
+MESHFIX__PRIVATE size_t meshfix__chunk_start(size_t n, size_t i, size_t chunks)
+{
+    size_t rest = n % chunks;
+    return n / chunks * i + (i < rest ? i : rest);
+}
+
+/* A stage over chunks of n items: its own context, and what each chunk
+   counts (up to two numbers), for the caller to add in chunk order. */
+typedef struct meshfix__stage {
+    void *context;
+    size_t n, chunks;
+    size_t count[MESHFIX__STAGE_CHUNKS][2];
+} meshfix__stage;
+
+/* Runs task over the chunks of n items (meshfix__stage_chunks) with
+   `context` as the stage's; returns the sum of what the chunks counted
+   (their first numbers; `second`, when not NULL, gets the second ones'). */
+MESHFIX__PRIVATE size_t meshfix__run_stage(const meshfix_options *o, void (*task)(void *stage, size_t chunk),
+                                          void *context, size_t n, size_t *second)
+{
+    meshfix__stage s;
+    size_t c, sum = 0, other = 0;
+    s.context = context;
+    s.n = n;
+    s.chunks = meshfix__stage_chunks(n);
+    for (c = 0; c < s.chunks; ++c)
+        s.count[c][0] = s.count[c][1] = 0;
+    meshfix__run_tasks(o, task, &s, s.chunks);
+    for (c = 0; c < s.chunks; ++c) {
+        sum += s.count[c][0];
+        other += s.count[c][1];
+    }
+    if (second != NULL)
+        *second = other;
+    return sum;
+}
+
+/* Whether the caller runs tasks side by side: a stage that has a
+   cheaper way on one thread (the same result, found in another order)
+   takes it without. */
+MESHFIX__PRIVATE int meshfix__threads(const meshfix_options *o)
+{
+    return o != NULL && o->parallel_for != NULL;
+}
+
+/* Chunk `chunk` of a stage: [*begin, *end). */
+MESHFIX__PRIVATE void meshfix__chunk_range(const meshfix__stage *s, size_t chunk, size_t *begin, size_t *end)
+{
+    *begin = meshfix__chunk_start(s->n, chunk, s->chunks);
+    *end = meshfix__chunk_start(s->n, chunk + 1, s->chunks);
+}
+
 /* ===== >>memory ===== */
 
 /* The caller's mesh as given: formats resolved (sizes 2 or 4 and 4 or 8,
@@ -1102,22 +1170,36 @@ MESHFIX__PRIVATE int meshfix__spans_area(const float *a, const float *b, const f
 /* Marks triangles that repeat a vertex (no topology) and, with positions,
    triangles with a NaN or infinite corner (no geometry: every geometric
    stage skips them, so no NaN reaches a comparison, a bin or a loop
-   bound). Returns the degenerate count. */
-MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
+   bound), and every triangle without an area (TRI_NO_AREA: the geometric
+   stages ask meshfix__has_area again and again). In chunks; returns the
+   degenerate count. */
+MESHFIX__PRIVATE void meshfix__degenerate_chunk(void *stage, size_t chunk)
 {
-    size_t t, count = 0;
-    for (t = 0; t < m->triangle_count; ++t) {
+    meshfix__stage *s = (meshfix__stage *)stage;
+    meshfix__mesh *m = (meshfix__mesh *)s->context;
+    size_t t, end, count = 0;
+    for (meshfix__chunk_range(s, chunk, &t, &end); t < end; ++t) {
         const unsigned int *v = m->indices + 3 * t;
         int degenerate = v[0] == v[1] || v[1] == v[2] || v[0] == v[2];
         unsigned int bits = degenerate ? MESHFIX__TRI_DEGENERATE : 0u;
-        if (m->positions != NULL && !(meshfix__is_finite_point(meshfix__position(m, v[0])) &&
-                                      meshfix__is_finite_point(meshfix__position(m, v[1])) &&
-                                      meshfix__is_finite_point(meshfix__position(m, v[2]))))
-            bits |= MESHFIX__TRI_NON_FINITE;
+        if (m->positions != NULL) {
+            const float *a = meshfix__position(m, v[0]), *b = meshfix__position(m, v[1]);
+            const float *c = meshfix__position(m, v[2]);
+            if (!(meshfix__is_finite_point(a) && meshfix__is_finite_point(b) && meshfix__is_finite_point(c)))
+                bits |= MESHFIX__TRI_NON_FINITE | MESHFIX__TRI_NO_AREA;
+            else if (degenerate || !meshfix__spans_area(a, b, c))
+                bits |= MESHFIX__TRI_NO_AREA;
+        }
         m->tri_bits[t] = (unsigned short)bits;
         count += (size_t)degenerate;
     }
-    return count;
+    s->count[chunk][0] = count;
+}
+
+MESHFIX__PRIVATE size_t meshfix__mark_degenerate(meshfix__mesh *m)
+{
+    m->areas_marked = m->positions != NULL;
+    return meshfix__run_stage(m->options, meshfix__degenerate_chunk, m, m->triangle_count, NULL);
 }
 
 /* A triangle that can take part in geometry: distinct, finite corners. */
@@ -3201,10 +3283,7 @@ MESHFIX__PRIVATE int meshfix__place_ray_trees(size_t *total, meshfix__span *node
    caller's parallel_for runs them side by side when the unit is built on
    its own (never from inside another task), and every chunk writes the
    same bits wherever it runs. */
-#define MESHFIX__BUILD_CHUNKS 64
-#ifndef MESHFIX__PARALLEL_UNIT
-#define MESHFIX__PARALLEL_UNIT 65536 /* triangles from which a unit's own build is parallel */
-#endif
+#define MESHFIX__BUILD_CHUNKS 64 /* from MESHFIX__PARALLEL_UNIT triangles on (>>config) a unit's own build is parallel */
 #define MESHFIX__BUILD_CENTROIDS 0   /* corners into waiting, centroids, each chunk's box of them */
 #define MESHFIX__BUILD_CODES 1
 #define MESHFIX__BUILD_GATHER 2      /* corners in code order */
