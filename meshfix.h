@@ -1529,6 +1529,157 @@ MESHFIX__PRIVATE size_t meshfix__weld_run(meshfix__welder *w, size_t vertex_coun
     return unique;
 }
 
+/* The pipeline's join at tolerance 0 (remap[v]: the lowest vertex at v's
+   position, bit for bit once -0 is +0; a NaN or infinite vertex joins
+   nothing), in phases a caller's parallel_for may run: each vertex's
+   bucket (the welder's hash, by chunks of vertices), the vertices moved
+   into partitions of the buckets (each partition's in vertex order), then
+   each partition sorted into its own buckets and their runs found alone.
+   Equal positions share a bucket, so no run crosses a partition, and a
+   bucket of one vertex is a run without reading its position again (most
+   buckets: the table is half empty). The remap is meshfix__weld_run's:
+   a bucket's vertices sorted by (position, vertex) whatever sorted them. */
+#define MESHFIX__JOIN_BUCKETS 0 /* per chunk of vertices: home[v] = its bucket; counts per partition */
+#define MESHFIX__JOIN_SPLIT 1   /* per chunk: its vertices into their partitions (rep_next), buckets beside (rep_head) */
+#define MESHFIX__JOIN_RUNS 2    /* per partition: its buckets in `order`, sorted, their runs into remap */
+
+typedef struct meshfix__joiner {
+    meshfix__welder *w;
+    unsigned int *remap;
+    size_t vertices, chunks, parts, shift; /* bucket b lies in partition b >> shift */
+    int phase;
+    unsigned int at[MESHFIX__STAGE_CHUNKS][MESHFIX__STAGE_CHUNKS]; /* [chunk][partition]: count, then next place */
+    unsigned int part_start[MESHFIX__STAGE_CHUNKS + 1];
+} meshfix__joiner;
+
+MESHFIX__PRIVATE void meshfix__join_buckets(meshfix__joiner *j, size_t chunk)
+{
+    meshfix__welder *w = j->w;
+    size_t v = meshfix__chunk_start(j->vertices, chunk, j->chunks), end = meshfix__chunk_start(j->vertices, chunk + 1, j->chunks);
+    unsigned int count[MESHFIX__STAGE_CHUNKS] = {0};
+    for (; v < end; ++v) {
+        double p[3];
+        int k;
+        if (!meshfix__read_point(w->positions, w->stride, w->position_size, v, p)) {
+            w->home[v] = MESHFIX__NONE;
+            j->remap[v] = (unsigned int)v;
+            continue;
+        }
+        for (k = 0; k < 3; ++k)
+            p[k] = p[k] == 0.0 ? 0.0 : p[k]; /* -0 joins +0 (meshfix__weld_load) */
+        w->home[v] = (unsigned int)meshfix__weld_hash(p, w->mask);
+        count[w->home[v] >> j->shift]++;
+    }
+    /* counted here, copied once: neighbouring chunks' counts share cache lines */
+    MESHFIX_MEMCPY(j->at[chunk], count, sizeof(count));
+}
+
+MESHFIX__PRIVATE void meshfix__join_split(meshfix__joiner *j, size_t chunk)
+{
+    meshfix__welder *w = j->w;
+    size_t v = meshfix__chunk_start(j->vertices, chunk, j->chunks), end = meshfix__chunk_start(j->vertices, chunk + 1, j->chunks);
+    unsigned int next[MESHFIX__STAGE_CHUNKS];
+    MESHFIX_MEMCPY(next, j->at[chunk], sizeof(next));
+    for (; v < end; ++v) {
+        unsigned int b = w->home[v], at;
+        if (b == MESHFIX__NONE)
+            continue;
+        at = next[b >> j->shift]++;
+        w->rep_next[at] = (unsigned int)v;
+        w->rep_head[at] = b;
+    }
+}
+
+/* The runs of one bucket's vertices, sorted: each takes its run's first. */
+MESHFIX__PRIVATE void meshfix__join_bucket(const meshfix__welder *w, unsigned int *ids, size_t n, unsigned int *remap)
+{
+    double previous[3], c[3];
+    unsigned int first = ids[0];
+    size_t i;
+    remap[first] = first;
+    if (n == 1)
+        return;
+    meshfix__sort_ids(ids, n, meshfix__weld_before, w);
+    first = ids[0];
+    remap[first] = first;
+    meshfix__vertex_cell(w, first, previous);
+    for (i = 1; i < n; ++i) {
+        meshfix__vertex_cell(w, ids[i], c);
+        if (meshfix__compare_cells(c, previous) != 0)
+            first = ids[i];
+        remap[ids[i]] = first;
+        previous[0] = c[0], previous[1] = c[1], previous[2] = c[2];
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__join_runs(meshfix__joiner *j, size_t part)
+{
+    meshfix__welder *w = j->w;
+    size_t b, first = part << j->shift, end = (part + 1) << j->shift, i;
+    unsigned int begin = j->part_start[part], last = j->part_start[part + 1], sum = begin;
+    MESHFIX_MEMSET(w->bucket_end + first, 0, (end - first) * sizeof(unsigned int));
+    for (i = begin; i < last; ++i)
+        w->bucket_end[w->rep_head[i]]++;
+    for (b = first; b < end; ++b) {
+        unsigned int n = w->bucket_end[b];
+        w->bucket_end[b] = sum;
+        sum += n;
+    }
+    for (i = begin; i < last; ++i)
+        w->order[w->bucket_end[w->rep_head[i]]++] = w->rep_next[i];
+    /* bucket_end[b] is now where bucket b ends */
+    for (b = first; b < end; begin = w->bucket_end[b++])
+        if (w->bucket_end[b] != begin)
+            meshfix__join_bucket(w, w->order + begin, w->bucket_end[b] - begin, j->remap);
+}
+
+MESHFIX__PRIVATE void meshfix__join_task(void *context, size_t index)
+{
+    meshfix__joiner *j = (meshfix__joiner *)context;
+    if (j->phase == MESHFIX__JOIN_BUCKETS)
+        meshfix__join_buckets(j, index);
+    else if (j->phase == MESHFIX__JOIN_SPLIT)
+        meshfix__join_split(j, index);
+    else
+        meshfix__join_runs(j, index);
+}
+
+/* w carved and set up for tolerance 0 with skip_non_finite; `parallel`:
+   the options whose parallel_for may run the phases (NULL: here). */
+MESHFIX__PRIVATE void meshfix__join_exact(meshfix__welder *w, size_t vertices, unsigned int *remap,
+                                         const meshfix_options *parallel)
+{
+    meshfix__joiner j;
+    size_t c, k, buckets = w->mask + 1;
+    unsigned int sum = 0;
+    j.w = w;
+    j.remap = remap;
+    j.vertices = vertices;
+    j.chunks = meshfix__stage_chunks(vertices);
+    for (j.shift = 0; (buckets >> j.shift) > j.chunks; ++j.shift) {
+    }
+    j.parts = buckets >> j.shift;
+    for (c = 0; c < j.chunks; ++c)
+        for (k = 0; k < j.parts; ++k)
+            j.at[c][k] = 0;
+    j.phase = MESHFIX__JOIN_BUCKETS;
+    meshfix__run_tasks(parallel, meshfix__join_task, &j, j.chunks);
+    /* each partition's vertices chunk by chunk: in vertex order */
+    for (k = 0; k < j.parts; ++k) {
+        j.part_start[k] = sum;
+        for (c = 0; c < j.chunks; ++c) {
+            unsigned int n = j.at[c][k];
+            j.at[c][k] = sum;
+            sum += n;
+        }
+    }
+    j.part_start[j.parts] = sum;
+    j.phase = MESHFIX__JOIN_SPLIT;
+    meshfix__run_tasks(parallel, meshfix__join_task, &j, j.chunks);
+    j.phase = MESHFIX__JOIN_RUNS;
+    meshfix__run_tasks(parallel, meshfix__join_task, &j, j.parts);
+}
+
 /* ===== >>input ===== */
 
 /* What the pipeline reads: 32-bit vertex ids after the topology, and float
@@ -1581,30 +1732,64 @@ MESHFIX__PRIVATE void meshfix__join_vertices(const meshfix__mesh *m, const meshf
     w.skip_non_finite = 1;
     w.cell = tolerance * (1.0 + 1e-9);
     meshfix__carve_welder(&w, (unsigned int *)(void *)(block + plan->weld), vertices, plan->weld_buckets);
-    meshfix__weld_run(&w, vertices, tolerance, remap);
+    if (tolerance == 0.0)
+        meshfix__join_exact(&w, vertices, remap, m->options);
+    else
+        meshfix__weld_run(&w, vertices, tolerance, remap);
 }
 
-/* Sets up m->indices and m->positions from the caller's mesh; returns the
-   used indices that became another vertex (report.mesh.vertices_joined). */
+/* The corners of a chunk of triangles: the caller's indices, through
+   remap when it is not NULL. */
+typedef struct meshfix__corner_task {
+    const meshfix__input *in;
+    const unsigned int *remap;
+    unsigned int *corners;
+} meshfix__corner_task;
+
+MESHFIX__PRIVATE void meshfix__corner_chunk(void *stage, size_t chunk)
+{
+    meshfix__stage *s = (meshfix__stage *)stage;
+    const meshfix__corner_task *task = (const meshfix__corner_task *)s->context;
+    size_t t, end, i;
+    meshfix__chunk_range(s, chunk, &t, &end);
+    for (i = 3 * t; i < 3 * end; ++i) {
+        unsigned int v = meshfix__source_index(task->in, i);
+        task->corners[i] = task->remap != NULL ? task->remap[v] : v;
+    }
+}
+
+/* Sets up m->indices and m->positions from the caller's mesh. With
+   `count_joined` (a report is asked), returns the used indices that
+   became another vertex (report.mesh.vertices_joined): a count over
+   distinct vertices, made in one pass in order (two chunks may share a
+   vertex), while the corners are written; else the corners are written
+   in chunks, and it returns 0. */
 MESHFIX__PRIVATE size_t meshfix__read_input(meshfix__mesh *m, const meshfix__input *in, const meshfix__plan *plan,
-                                           unsigned char *block)
+                                           unsigned char *block, int count_joined)
 {
     unsigned int *corners = (unsigned int *)(void *)(block + plan->corners);
     unsigned int *remap = (unsigned int *)(void *)(block + plan->remap), *seen = m->vertex_work;
     size_t i, joined = 0, index_count = 3 * m->triangle_count;
+    meshfix__corner_task task;
     if (in->positions != NULL && in->position_size == 8)
         meshfix__convert_points(m, in, (float *)(void *)(block + plan->points));
+    task.in = in;
+    task.remap = NULL;
+    task.corners = corners;
+    m->indices = corners;
     if (!meshfix__joins_positions(in)) {
-        if (in->index_size == 4) {
+        if (in->index_size == 4)
             m->indices = (const unsigned int *)(const void *)in->indices;
-            return 0;
-        }
-        for (i = 0; i < index_count; ++i)
-            corners[i] = meshfix__source_index(in, i);
-        m->indices = corners;
+        else
+            meshfix__run_stage(m->options, meshfix__corner_chunk, &task, m->triangle_count, NULL);
         return 0;
     }
     meshfix__join_vertices(m, in, plan, block, remap);
+    task.remap = remap;
+    if (!count_joined) {
+        meshfix__run_stage(m->options, meshfix__corner_chunk, &task, m->triangle_count, NULL);
+        return 0;
+    }
     MESHFIX_MEMSET(seen, 0, m->vertex_range * sizeof(unsigned int));
     for (i = 0; i < index_count; ++i) {
         unsigned int v = meshfix__source_index(in, i);
@@ -1612,7 +1797,6 @@ MESHFIX__PRIVATE size_t meshfix__read_input(meshfix__mesh *m, const meshfix__inp
         joined += (size_t)(seen[v] == 0 && remap[v] != v);
         seen[v] = 1;
     }
-    m->indices = corners;
     return joined;
 }
 
@@ -8387,10 +8571,10 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call)
     }
 
     /* 2. input: vertex ids after the topology, float positions */
-    joined = meshfix__read_input(&m, in, &plan, block);
+    full = call->report != NULL || outputs.components != NULL || call->failure != NULL;
+    joined = meshfix__read_input(&m, in, &plan, block, full);
 
     /* 3-6. edges, patches, components, policy */
-    full = call->report != NULL || outputs.components != NULL || call->failure != NULL;
     result = meshfix__analyze(&m, policy, &options, full, &allocator, &rest, &r);
 
     /* 7. write: nothing can fail from here on */

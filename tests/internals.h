@@ -24,7 +24,7 @@ static unsigned char *bind_mesh(meshfix__mesh *m, const meshfix_options *o, cons
     *kept = call;
     aligned = block + head + (16 - (size_t)(block + head) % 16) % 16;
     meshfix__bind(m, aligned, &plan, &kept->input, vertex_count, &kept->options, &no_outputs, 0);
-    meshfix__read_input(m, &kept->input, &plan, aligned);
+    meshfix__read_input(m, &kept->input, &plan, aligned, 0);
     meshfix__mark_degenerate(m);
     return block;
 }
