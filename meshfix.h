@@ -2386,19 +2386,27 @@ MESHFIX__PRIVATE int meshfix__normals_keep_apart(const meshfix__mesh *m, unsigne
     return meshfix__normal_agrees(m, t) && meshfix__normal_agrees(m, u);
 }
 
-/* Joins t to its lower manifold neighbours, in order of neighbour; marks
-   t when it has other kinds of edges. */
-MESHFIX__PRIVATE void meshfix__join_lower_neighbours(meshfix__mesh *m, unsigned int t)
+/* Joins t to its manifold neighbours u with from <= u < to (to <= t), in
+   order of neighbour; marks t when it has other kinds of edges (with
+   `mark`). Returns 1 when t has a manifold neighbour below `from`. */
+MESHFIX__PRIVATE int meshfix__join_lower_neighbours(meshfix__mesh *m, unsigned int t, unsigned int from,
+                                                   unsigned int to, int mark)
 {
     unsigned int h, n = 0, i, j, u[3], opposite[3];
+    int below = 0;
     for (h = 3 * t; h < 3 * t + 3; ++h) {
         unsigned int g = m->mate[h];
         if (!meshfix__is_mate(g)) {
-            m->tri_bits[t] |= g == MESHFIX__NONE ? MESHFIX__TRI_OPEN : MESHFIX__TRI_NOT_MANIFOLD;
+            if (mark)
+                m->tri_bits[t] |= g == MESHFIX__NONE ? MESHFIX__TRI_OPEN : MESHFIX__TRI_NOT_MANIFOLD;
             continue;
         }
-        if (g / 3 > t)
+        if (g / 3 >= to)
             continue;
+        if (g / 3 < from) {
+            below = 1;
+            continue;
+        }
         for (j = n++; j > 0 && u[j - 1] > g / 3; --j) {
             u[j] = u[j - 1];
             opposite[j] = opposite[j - 1];
@@ -2415,6 +2423,7 @@ MESHFIX__PRIVATE void meshfix__join_lower_neighbours(meshfix__mesh *m, unsigned 
         }
         meshfix__join_triangles(m, t, u[i], opposite[i]);
     }
+    return below;
 }
 
 /* Numbers the patches by their seeds, gives each triangle its patch and
@@ -2464,7 +2473,7 @@ MESHFIX__PRIVATE void meshfix__number_patches(meshfix__mesh *m)
 /* The flood fill: every triangle becomes a class of its own and joins its
    lower neighbours (already set up), in triangle order; then the classes
    are numbered. Degenerate triangles have no edges and no patch. */
-MESHFIX__PRIVATE void meshfix__find_patches(meshfix__mesh *m)
+MESHFIX__PRIVATE void meshfix__flood_in_order(meshfix__mesh *m)
 {
     unsigned int t, triangles = (unsigned int)m->triangle_count;
     for (t = 0; t < triangles; ++t) {
@@ -2473,8 +2482,77 @@ MESHFIX__PRIVATE void meshfix__find_patches(meshfix__mesh *m)
             continue;
         }
         m->tri_patch[t] = t;
-        meshfix__join_lower_neighbours(m, t);
+        meshfix__join_lower_neighbours(m, t, 0, t, 1);
     }
+}
+
+/* A chunk of triangles joined among themselves; those with a neighbour
+   in an earlier chunk wait in `queue` from the chunk's first slot on
+   (count[chunk][0] of them); count[chunk][1]: a seam was found. */
+MESHFIX__PRIVATE void meshfix__flood_chunk(void *stage, size_t chunk)
+{
+    meshfix__stage *s = (meshfix__stage *)stage;
+    meshfix__mesh *m = (meshfix__mesh *)s->context;
+    size_t begin, end, t, waiting = 0, seam = 0;
+    meshfix__chunk_range(s, chunk, &begin, &end);
+    for (t = begin; t < end; ++t) {
+        if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE) {
+            m->tri_patch[t] = MESHFIX__NONE;
+            continue;
+        }
+        m->tri_patch[t] = (unsigned int)t;
+        if (meshfix__join_lower_neighbours(m, (unsigned int)t, (unsigned int)begin, (unsigned int)t, 1))
+            m->queue[begin + waiting++] = (unsigned int)t;
+        seam |= (size_t)((m->tri_bits[t] & MESHFIX__TRI_SEAM) != 0);
+    }
+    s->count[chunk][0] = waiting;
+    s->count[chunk][1] = seam;
+}
+
+/* The same classes by chunks on the caller's threads: each chunk's
+   triangles joined among themselves, then, here, each joined to its
+   neighbours in earlier chunks. A class whose edges agree (an orientable
+   patch) comes out with the same triangles, cuts and windings relative
+   to its seed whatever the order of its joins; only where a join
+   contradicts the others (a seam: a non-orientable patch) does the order
+   say which triangle carries it, and then the fill runs again in
+   triangle order. (Without threads the fill runs in order at once.) */
+MESHFIX__PRIVATE void meshfix__flood_by_chunks(meshfix__mesh *m)
+{
+    meshfix__stage s;
+    size_t c, i, t;
+    int seam = 0;
+    s.context = m;
+    s.n = m->triangle_count;
+    s.chunks = meshfix__stage_chunks(s.n);
+    for (c = 0; c < s.chunks; ++c)
+        s.count[c][0] = s.count[c][1] = 0;
+    meshfix__run_tasks(m->options, meshfix__flood_chunk, &s, s.chunks);
+    for (c = 0; c < s.chunks; ++c) {
+        size_t first = meshfix__chunk_start(s.n, c, s.chunks);
+        seam |= s.count[c][1] != 0;
+        for (i = 0; i < s.count[c][0]; ++i) {
+            t = m->queue[first + i];
+            meshfix__join_lower_neighbours(m, (unsigned int)t, 0, (unsigned int)first, 0);
+        }
+    }
+    for (c = 0; c < s.chunks && !seam; ++c)
+        for (i = 0; i < s.count[c][0] && !seam; ++i)
+            seam = (m->tri_bits[m->queue[meshfix__chunk_start(s.n, c, s.chunks) + i]] & MESHFIX__TRI_SEAM) != 0;
+    if (!seam)
+        return;
+    for (t = 0; t < m->triangle_count; ++t)
+        m->tri_bits[t] &= (unsigned short)~(MESHFIX__TRI_RELATIVE | MESHFIX__TRI_OPEN | MESHFIX__TRI_NOT_MANIFOLD |
+                                            MESHFIX__TRI_SEAM | MESHFIX__TRI_CUT);
+    meshfix__flood_in_order(m);
+}
+
+MESHFIX__PRIVATE void meshfix__find_patches(meshfix__mesh *m)
+{
+    if (meshfix__stage_chunks(m->triangle_count) > 1 && meshfix__threads(m->options))
+        meshfix__flood_by_chunks(m);
+    else
+        meshfix__flood_in_order(m);
     meshfix__number_patches(m);
 }
 
