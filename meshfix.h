@@ -2947,30 +2947,69 @@ MESHFIX__PRIVATE float meshfix__centroid(const float *corners, int axis)
     return (float)(((double)corners[axis] + (double)corners[3 + axis] + (double)corners[6 + axis]) / 3.0);
 }
 
+/* The box of a chunk of triangles' corners (those with geometry), in
+   float: the least and greatest of floats are floats, the same whatever
+   the chunks (a box in double, kept in arrays, was a store and a load per
+   corner and axis). count[chunk][0]: 1 when it saw a triangle. */
+typedef struct meshfix__frame_task {
+    const meshfix__mesh *m;
+    float box[MESHFIX__STAGE_CHUNKS][6];
+} meshfix__frame_task;
+
+MESHFIX__PRIVATE void meshfix__frame_chunk(void *stage, size_t chunk)
+{
+    meshfix__stage *s = (meshfix__stage *)stage;
+    meshfix__frame_task *task = (meshfix__frame_task *)s->context;
+    const meshfix__mesh *m = task->m;
+    float low[3] = {0, 0, 0}, high[3] = {0, 0, 0};
+    size_t t, end;
+    unsigned int c;
+    int seen = 0;
+    for (meshfix__chunk_range(s, chunk, &t, &end); t < end; ++t) {
+        if (!meshfix__has_geometry(m, (unsigned int)t))
+            continue;
+        if (!seen) {
+            MESHFIX_MEMCPY(low, meshfix__position(m, m->indices[3 * t]), sizeof(low));
+            MESHFIX_MEMCPY(high, low, sizeof(high));
+            seen = 1;
+        }
+        for (c = 0; c < 3; ++c)
+            meshfix__grow_box(low, high, meshfix__position(m, m->indices[3 * t + c]));
+    }
+    MESHFIX_MEMCPY(task->box[chunk], low, sizeof(low));
+    MESHFIX_MEMCPY(task->box[chunk] + 3, high, sizeof(high));
+    s->count[chunk][0] = (size_t)seen;
+}
+
 /* Float geometry (the trees, rays, sample points, coherence) works in a
    frame that maps the box of the model into [-1, 1]: re-centred, so a
    model far from the origin keeps its small features, and scaled by a
    power of two, which rounds nothing, so no difference or product of
-   corners can overflow a float. */
+   corners can overflow a float. The box by chunks of triangles, a
+   caller's parallel_for may run them. */
 MESHFIX__PRIVATE void meshfix__fit_frame(meshfix__bvh *b, const meshfix__mesh *m)
 {
-    /* the box in float, held in locals: the least and greatest of floats
-       are floats (a box in double, kept in arrays, was a store and a load
-       per corner and axis) */
+    meshfix__frame_task task;
+    meshfix__stage s;
     float box_low[3] = {0, 0, 0}, box_high[3] = {0, 0, 0};
     double low[3], high[3], half = 0;
-    unsigned int t, c;
+    size_t c;
     int k, seen = 0;
-    for (t = 0; t < m->triangle_count; ++t) {
-        if (!meshfix__has_geometry(m, t))
+    task.m = m;
+    s.context = &task;
+    s.n = m->triangle_count;
+    s.chunks = meshfix__stage_chunks(s.n);
+    meshfix__run_tasks(m->options, meshfix__frame_chunk, &s, s.chunks);
+    for (c = 0; c < s.chunks; ++c) {
+        if (!s.count[c][0])
             continue;
         if (!seen) {
-            MESHFIX_MEMCPY(box_low, meshfix__position(m, m->indices[3 * t]), sizeof(box_low));
-            MESHFIX_MEMCPY(box_high, box_low, sizeof(box_high));
+            MESHFIX_MEMCPY(box_low, task.box[c], sizeof(box_low));
+            MESHFIX_MEMCPY(box_high, task.box[c] + 3, sizeof(box_high));
             seen = 1;
         }
-        for (c = 0; c < 3; ++c)
-            meshfix__grow_box(box_low, box_high, meshfix__position(m, m->indices[3 * t + c]));
+        meshfix__grow_box(box_low, box_high, task.box[c]);
+        meshfix__grow_box(box_low, box_high, task.box[c] + 3);
     }
     for (k = 0; k < 3; ++k) {
         low[k] = (double)box_low[k];
