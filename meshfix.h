@@ -8387,56 +8387,116 @@ MESHFIX__PRIVATE void meshfix__count_verdict(const meshfix__unit *u, size_t tria
     }
 }
 
-/* Each patch: its sums, its verdict (>>decide: meshfix__patch_verdict,
+/* Patch p, its sums known: its verdict (>>decide: meshfix__patch_verdict,
    meshfix__turn_patch; policy < 0: inspect, no turns), and the report's
    totals as returned. */
+MESHFIX__PRIVATE void meshfix__orient_patch(meshfix__mesh *m, unsigned int p, int policy, const meshfix_options *o,
+                                           const meshfix__patch_sums *s, meshfix_report *r)
+{
+    unsigned int turn = 0, bits = m->patch_bits[p];
+    size_t flipped = 0;
+    double volume, given;
+    meshfix_component *out = meshfix__component_out(m, m->patch_link[p]);
+    r->evidence.sdf_evaluations += s->sdf_evaluations;
+    if (policy >= 0) {
+        meshfix__unit verdict;
+        meshfix__patch_verdict(m, p, policy, s, &verdict);
+        meshfix__count_verdict(&verdict, m->patch_start[p + 1] - m->patch_start[p], s->area,
+                               meshfix__doubtful_below(o, policy), r);
+        if (m->outputs->patch_confidence != NULL && p < m->outputs->patch_confidence_capacity)
+            m->outputs->patch_confidence[p] = verdict.confidence;
+        if (m->outputs->patch_evidence != NULL && p < m->outputs->patch_evidence_capacity)
+            m->outputs->patch_evidence[p] = verdict.kind;
+        turn = verdict.turn;
+        flipped = meshfix__turn_patch(m, p, policy, turn, r);
+        r->triangles_flipped += flipped;
+        r->patches_flipped += (size_t)(flipped != 0);
+    }
+    given = s->volume_given;
+    volume = policy < 0 ? given : turn ? -s->volume_relative : s->volume_relative;
+    if (!meshfix__is_closed_orientable(m, p))
+        volume = given = 0.0;
+    r->signed_volume_before += given;
+    /* inside-out only means something for a patch wound one way throughout */
+    if (s->reversed == 0)
+        r->patches_inside_out_before += (size_t)(given < 0.0 && meshfix__volume_is_meaningful(given, s->area));
+    /* a shell decided alone (the geometric stage counts its units) */
+    if (policy >= 0 && !(bits & MESHFIX__PATCH_DECIDED) && volume < 0.0 && meshfix__volume_is_meaningful(volume, s->area))
+        r->evidence.shells_inward++;
+    r->mesh.triangles_zero_area += s->zero_area;
+    r->mesh.area += s->area;
+    r->mesh.signed_volume += volume;
+    r->mesh.patches_closed += (size_t)!(bits & MESHFIX__PATCH_OPEN);
+    if (policy >= 0 || s->reversed == 0)
+        r->mesh.patches_inside_out += (size_t)(volume < 0.0 && meshfix__volume_is_meaningful(volume, s->area));
+    if (out != NULL)
+        meshfix__add_patch_to_component(m, p, s, volume, out);
+    m->component_bits[m->patch_link[p]] |= (unsigned char)bits;
+}
+
+/* The sums of a window of patches, by chunks of about equal triangles:
+   each patch summed whole, alone, so the same bits wherever it runs. */
+typedef struct meshfix__sums_task {
+    meshfix__mesh *m;
+    unsigned int first, end; /* the window's patches */
+    meshfix__patch_sums *sums; /* per patch of the window */
+} meshfix__sums_task;
+
+/* The first patch of the window at or after `triangles` of its triangles. */
+MESHFIX__PRIVATE unsigned int meshfix__patch_at(const meshfix__sums_task *task, size_t triangles)
+{
+    const unsigned int *start = task->m->patch_start;
+    unsigned int lo = task->first, hi = task->end;
+    while (lo < hi) {
+        unsigned int mid = lo + (hi - lo) / 2;
+        if ((size_t)(start[mid] - start[task->first]) < triangles)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+MESHFIX__PRIVATE void meshfix__sums_chunk(void *stage, size_t chunk)
+{
+    meshfix__stage *s = (meshfix__stage *)stage;
+    const meshfix__sums_task *task = (const meshfix__sums_task *)s->context;
+    size_t begin, end;
+    unsigned int p, last;
+    meshfix__chunk_range(s, chunk, &begin, &end);
+    last = meshfix__patch_at(task, end);
+    for (p = meshfix__patch_at(task, begin); p < last; ++p)
+        meshfix__sum_patch(task->m, p, &task->sums[p - task->first]);
+}
+
+/* Each patch: its sums, then in patch order its verdict and the report.
+   The sums are taken a window of patches at a time in the join's room,
+   when it is free (positions joined the corners), in chunks a caller's
+   parallel_for may run, except for SDF (its callbacks were not promised
+   to be reentrant); else each where it is used. */
 MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, const meshfix_options *o,
                                               meshfix_report *r)
 {
-    unsigned int p, c;
+    unsigned int p, c, window = 0;
+    meshfix__sums_task task;
     MESHFIX_MEMSET(m->component_bits, 0, m->component_count);
-    for (p = 0; p < m->patch_count; ++p) {
+    if (m->input_room != NULL && policy != MESHFIX_POLICY_SDF)
+        window = (unsigned int)(3 * m->triangle_count / (sizeof(meshfix__patch_sums) / sizeof(unsigned int)));
+    task.m = m;
+    task.sums = (meshfix__patch_sums *)(void *)m->input_room;
+    for (p = 0; p < m->patch_count;) {
         meshfix__patch_sums s;
-        unsigned int turn = 0, bits = m->patch_bits[p];
-        size_t flipped = 0;
-        double volume, given;
-        meshfix_component *out = meshfix__component_out(m, m->patch_link[p]);
-        meshfix__sum_patch(m, p, &s);
-        r->evidence.sdf_evaluations += s.sdf_evaluations;
-        if (policy >= 0) {
-            meshfix__unit verdict;
-            meshfix__patch_verdict(m, p, policy, &s, &verdict);
-            meshfix__count_verdict(&verdict, m->patch_start[p + 1] - m->patch_start[p], s.area,
-                                   meshfix__doubtful_below(o, policy), r);
-            if (m->outputs->patch_confidence != NULL && p < m->outputs->patch_confidence_capacity)
-                m->outputs->patch_confidence[p] = verdict.confidence;
-            if (m->outputs->patch_evidence != NULL && p < m->outputs->patch_evidence_capacity)
-                m->outputs->patch_evidence[p] = verdict.kind;
-            turn = verdict.turn;
-            flipped = meshfix__turn_patch(m, p, policy, turn, r);
-            r->triangles_flipped += flipped;
-            r->patches_flipped += (size_t)(flipped != 0);
+        if (window < 2) {
+            meshfix__sum_patch(m, p, &s);
+            meshfix__orient_patch(m, p, policy, o, &s, r);
+            ++p;
+            continue;
         }
-        given = s.volume_given;
-        volume = policy < 0 ? given : turn ? -s.volume_relative : s.volume_relative;
-        if (!meshfix__is_closed_orientable(m, p))
-            volume = given = 0.0;
-        r->signed_volume_before += given;
-        /* inside-out only means something for a patch wound one way throughout */
-        if (s.reversed == 0)
-            r->patches_inside_out_before += (size_t)(given < 0.0 && meshfix__volume_is_meaningful(given, s.area));
-        /* a shell decided alone (the geometric stage counts its units) */
-        if (policy >= 0 && !(bits & MESHFIX__PATCH_DECIDED) && volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area))
-            r->evidence.shells_inward++;
-        r->mesh.triangles_zero_area += s.zero_area;
-        r->mesh.area += s.area;
-        r->mesh.signed_volume += volume;
-        r->mesh.patches_closed += (size_t)!(bits & MESHFIX__PATCH_OPEN);
-        if (policy >= 0 || s.reversed == 0)
-            r->mesh.patches_inside_out += (size_t)(volume < 0.0 && meshfix__volume_is_meaningful(volume, s.area));
-        if (out != NULL)
-            meshfix__add_patch_to_component(m, p, &s, volume, out);
-        m->component_bits[m->patch_link[p]] |= (unsigned char)bits;
+        task.first = p;
+        task.end = m->patch_count - p < window ? (unsigned int)m->patch_count : p + window;
+        meshfix__run_stage(m->options, meshfix__sums_chunk, &task, m->patch_start[task.end] - m->patch_start[p], NULL);
+        for (; p < task.end; ++p)
+            meshfix__orient_patch(m, p, policy, o, &task.sums[p - task.first], r);
     }
     for (c = 0; c < m->component_count; ++c) {
         r->mesh.components_closed += (size_t)!(m->component_bits[c] & MESHFIX__PATCH_NOT_MANIFOLD);
