@@ -8680,33 +8680,58 @@ MESHFIX__PRIVATE void meshfix__write_triangle(const meshfix__mesh *m, size_t t, 
     }
 }
 
-/* Each triangle is read whole before it is written, and each output
-   triangle depends on its own input triangle only. Written in the
-   direction memmove would copy, a destination that overlaps the indices
-   anywhere (equal, or shifted by any amount) never overwrites an index
-   before it is read. The addresses are compared as integers: the two
-   pointers may belong to different arrays. */
-MESHFIX__PRIVATE void meshfix__write_indices(const meshfix__mesh *m, unsigned char *destination)
-{
-    size_t t;
-    if ((size_t)destination <= (size_t)m->input->indices)
-        for (t = 0; t < m->triangle_count; ++t)
-            meshfix__write_triangle(m, t, destination);
-    else
-        for (t = m->triangle_count; t-- > 0;)
-            meshfix__write_triangle(m, t, destination);
-}
+/* What the call writes, by chunks of triangles: the indices (NULL: none),
+   the flip marks and the patch ids asked for. */
+typedef struct meshfix__write_task {
+    const meshfix__mesh *m;
+    unsigned char *destination;
+    int policy;
+} meshfix__write_task;
 
-MESHFIX__PRIVATE void meshfix__write_triangle_outputs(const meshfix__mesh *m, int policy)
+MESHFIX__PRIVATE void meshfix__write_chunk(void *stage, size_t chunk)
 {
+    meshfix__stage *s = (meshfix__stage *)stage;
+    const meshfix__write_task *task = (const meshfix__write_task *)s->context;
+    const meshfix__mesh *m = task->m;
     const meshfix_outputs *out = m->outputs;
-    size_t t;
-    if (out->flipped != NULL && policy >= 0)
-        for (t = 0; t < m->triangle_count; ++t)
+    size_t t, begin, end;
+    meshfix__chunk_range(s, chunk, &begin, &end);
+    if (task->destination != NULL)
+        for (t = begin; t < end; ++t)
+            meshfix__write_triangle(m, t, task->destination);
+    if (out->flipped != NULL && task->policy >= 0)
+        for (t = begin; t < end; ++t)
             out->flipped[t] = (unsigned char)meshfix__flip_of(m, (unsigned int)t);
     if (out->patch_ids != NULL)
-        for (t = 0; t < m->triangle_count; ++t)
+        for (t = begin; t < end; ++t)
             out->patch_ids[t] = m->tri_patch[t];
+}
+
+/* Each triangle is read whole before it is written, and each output
+   triangle depends on its own input triangle only. A destination equal
+   to the indices, or apart from them, is written by chunks; one that
+   overlaps them shifted by any amount is written here first, in the
+   direction memmove would copy, so that no index is overwritten before
+   it is read. The addresses are compared as integers: the two pointers
+   may belong to different arrays. */
+MESHFIX__PRIVATE void meshfix__write_outputs(const meshfix__mesh *m, unsigned char *destination, int policy)
+{
+    size_t t, d = (size_t)destination, i = (size_t)m->input->indices;
+    size_t bytes = 3 * m->triangle_count * m->input->index_size;
+    meshfix__write_task task;
+    task.m = m;
+    task.destination = destination;
+    task.policy = policy;
+    if (destination != NULL && d != i && (d > i ? d - i : i - d) < bytes) {
+        if (d < i)
+            for (t = 0; t < m->triangle_count; ++t)
+                meshfix__write_triangle(m, t, destination);
+        else
+            for (t = m->triangle_count; t-- > 0;)
+                meshfix__write_triangle(m, t, destination);
+        task.destination = NULL;
+    }
+    meshfix__run_stage(m->options, meshfix__write_chunk, &task, m->triangle_count, NULL);
 }
 
 /* Option values outside their documented ranges are refused, not
@@ -8929,9 +8954,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__run(meshfix__call *call)
         r.mesh.vertices_joined = joined;
         r.verdict = meshfix__verdict(&r, policy);
         r.verdict_before = meshfix__verdict_before(&r);
-        if (call->destination != NULL && policy >= 0)
-            meshfix__write_indices(&m, (unsigned char *)call->destination);
-        meshfix__write_triangle_outputs(&m, policy);
+        meshfix__write_outputs(&m, policy >= 0 ? (unsigned char *)call->destination : NULL, policy);
         if (call->report != NULL)
             *call->report = r;
     }
