@@ -746,6 +746,114 @@ static void test_parallel_for_identical(void)
     mio_free(&g);
 }
 
+/* The stages before and after the decision (the join, the edges, the
+   flood fill, the sums, the write) on chunks of MESHFIX__PARALLEL_UNIT
+   triangles and more: on 2 and 4 real threads and in reverse order, what
+   one thread gives, bit for bit, written in place or not. A Moebius strip
+   (a seam: the fill runs again in order), a shuffled sphere (every chunk
+   joins the others), a soup (every corner joined), 16-bit indices,
+   TOPOLOGY_INDICES and no positions. */
+static void same_on_threads(const char *name, const mio_mesh *g, const float *positions, meshfix_options o)
+{
+    size_t n = g->index_count / 3, threads, i, mode;
+    unsigned int *single = (unsigned int *)malloc(g->index_count * sizeof(unsigned int) + 4);
+    unsigned int *multi = (unsigned int *)malloc(g->index_count * sizeof(unsigned int) + 4);
+    unsigned int *ids1 = (unsigned int *)malloc(n * sizeof(unsigned int)), *ids2 = (unsigned int *)malloc(n * sizeof(unsigned int));
+    unsigned char *flipped1 = (unsigned char *)malloc(n), *flipped2 = (unsigned char *)malloc(n);
+    const void *indices = g->indices;
+    unsigned short *narrow = NULL;
+    size_t index_bytes = o.index_size == 2 ? 2 : 4;
+    meshfix_outputs out1, out2;
+    meshfix_report r1, r2;
+    int calls = 0;
+    if (o.index_size == 2) {
+        narrow = (unsigned short *)malloc(g->index_count * sizeof(unsigned short));
+        for (i = 0; i < g->index_count; ++i)
+            narrow[i] = (unsigned short)g->indices[i];
+        indices = narrow;
+    }
+    memset(&out1, 0, sizeof(out1));
+    out1.patch_ids = ids1;
+    out1.flipped = flipped1;
+    out2 = out1;
+    out2.patch_ids = ids2;
+    out2.flipped = flipped2;
+    CHECK_EQ(meshfix_orient(single, indices, g->index_count, positions, g->vertex_count, 12, &o, &r1, &out1), MESHFIX_OK);
+    for (mode = 0; mode < 4; ++mode) {
+        meshfix_options t = o;
+        void *destination = multi;
+        threads = mode == 0 ? 2 : 4;
+        t.parallel_for = mode < 2 ? threaded_parallel_for : backwards_parallel_for;
+        t.parallel_user = mode < 2 ? (void *)&threads : (void *)&calls;
+        if (mode == 3) { /* in place */
+            memcpy(multi, indices, g->index_count * index_bytes);
+            destination = multi;
+            indices = multi;
+        }
+        memset(ids2, 0xAB, n * sizeof(unsigned int));
+        memset(flipped2, 0xAB, n);
+        CHECK_EQ(meshfix_orient(destination, indices, g->index_count, positions, g->vertex_count, 12, &t, &r2, &out2),
+                 MESHFIX_OK);
+        CHECK(memcmp(single, multi, g->index_count * index_bytes) == 0);
+        CHECK(memcmp(&r1, &r2, sizeof(r1)) == 0);
+        CHECK(memcmp(ids1, ids2, n * sizeof(unsigned int)) == 0);
+        CHECK(memcmp(flipped1, flipped2, n) == 0);
+        if (mode == 3)
+            indices = narrow != NULL ? (const void *)narrow : (const void *)g->indices;
+    }
+    CHECK(calls > 2);
+    printf("    %s: %lu triangles, %lu patches, %lu flipped, the same on 1, 2 and 4 threads\n", name,
+           (unsigned long)n, (unsigned long)r1.mesh.patches, (unsigned long)r1.triangles_flipped);
+    free(single), free(multi), free(ids1), free(ids2), free(flipped1), free(flipped2), free(narrow);
+}
+
+static void test_threads_stages(void)
+{
+    mio_mesh g, soup;
+    meshfix_options o;
+    size_t t;
+    memset(&g, 0, sizeof(g));
+    memset(&o, 0, sizeof(o));
+    CHECK(gen_mobius(&g, MESHFIX__PARALLEL_UNIT / 2 + 500));
+    gen_flip_random(&g, 0.3, 5, NULL);
+    same_on_threads("Moebius strip", &g, g.positions, o);
+    o.policy = MESHFIX_POLICY_MAJORITY;
+    same_on_threads("Moebius strip, MAJORITY, no positions", &g, NULL, o);
+    mio_free(&g);
+
+    memset(&g, 0, sizeof(g));
+    CHECK(gen_sphere(&g, 180, 200, 0, 0, 0, 1));
+    CHECK(g.index_count / 3 >= MESHFIX__PARALLEL_UNIT && g.vertex_count < 65536);
+    CHECK(gen_shuffle(&g, NULL, NULL, 7));
+    gen_flip_random(&g, 0.3, 9, NULL);
+    o.policy = MESHFIX_POLICY_AUTO;
+    same_on_threads("shuffled sphere", &g, g.positions, o);
+    o.index_size = 2;
+    same_on_threads("shuffled sphere, 16-bit indices", &g, g.positions, o);
+    o.index_size = 0;
+    o.topology = MESHFIX_TOPOLOGY_INDICES;
+    o.policy = MESHFIX_POLICY_SEED;
+    same_on_threads("shuffled sphere, TOPOLOGY_INDICES, SEED", &g, g.positions, o);
+    o.topology = MESHFIX_TOPOLOGY_POSITIONS;
+
+    /* every triangle its own corners: the join makes the sphere again */
+    memset(&soup, 0, sizeof(soup));
+    soup.index_count = soup.vertex_count = g.index_count;
+    soup.indices = (unsigned int *)malloc(soup.index_count * sizeof(unsigned int));
+    soup.positions = (float *)malloc(soup.vertex_count * 3 * sizeof(float));
+    for (t = 0; t < soup.index_count; ++t) {
+        soup.indices[t] = (unsigned int)t;
+        memcpy(soup.positions + 3 * t, g.positions + 3 * (size_t)g.indices[t], 3 * sizeof(float));
+    }
+    o.policy = MESHFIX_POLICY_OUTWARD;
+    same_on_threads("soup of the sphere", &soup, soup.positions, o);
+    o.policy = MESHFIX_POLICY_MAJORITY;
+    same_on_threads("soup of the sphere, no positions", &soup, NULL, o);
+    free(soup.indices);
+    free(soup.positions);
+    mio_free(&g);
+}
+
 /* ---- weld ---- */
 
 static void test_weld(void)
@@ -1044,6 +1152,7 @@ static const test_case tests[] = {
     {"independent of triangle order and of how much was flipped", test_order_and_flip_independence},
     {"parallel_for gives bit-identical results; confidence in [0, 1]", test_parallel_for_identical},
     {"AUTO with 2 and 4 real threads gives the single-threaded result", test_threads_identical},
+    {"the input, edge, fill, sum and write stages on threads give one thread's result", test_threads_stages},
     {"weld: exact, tolerance, -0, NaN", test_weld},
     {"watertight rays through shared vertices and edges", test_watertight_rays},
     {"trees of both builders answer as brute force does", test_trees_against_brute_force},
