@@ -1263,29 +1263,65 @@ MESHFIX__PRIVATE void meshfix__sort_ids(unsigned int *ids, size_t n, meshfix__be
 
 /* Sorts n values by their 32-bit keys, stably: four passes of a byte
    each, between (keys, values) and the scratch pair, so the result ends
-   where it started. */
-MESHFIX__PRIVATE void meshfix__radix_sort(unsigned int *keys, unsigned int *values, unsigned int *scratch_keys,
-                                          unsigned int *scratch_values, size_t n)
+   where it started. From MESHFIX__PARALLEL_UNIT values on, each pass
+   counts and moves MESHFIX__RADIX_CHUNKS chunks as tasks of `parallel`
+   (NULL: here): each chunk's values of a byte go after the earlier
+   chunks' of that byte, so the order is the one pass's in one go. */
+#define MESHFIX__RADIX_CHUNKS 8
+
+typedef struct meshfix__radix {
+    const unsigned int *from_keys, *from_values;
+    unsigned int *to_keys, *to_values;
+    size_t n, chunks;
+    int shift, place;
+    unsigned int at[MESHFIX__RADIX_CHUNKS][256]; /* [chunk][byte]: count, then next place */
+} meshfix__radix;
+
+MESHFIX__PRIVATE void meshfix__radix_chunk(void *context, size_t chunk)
 {
-    unsigned int *from_keys = keys, *from_values = values, *to_keys = scratch_keys, *to_values = scratch_values, *x;
-    size_t count[256], i, sum;
-    int shift;
-    for (shift = 0; shift < 32; shift += 8) {
-        MESHFIX_MEMSET(count, 0, sizeof(count));
-        for (i = 0; i < n; ++i)
-            count[(from_keys[i] >> shift) & 255u]++;
-        for (i = 0, sum = 0; i < 256; ++i) {
-            size_t c = count[i];
-            count[i] = sum;
-            sum += c;
-        }
-        for (i = 0; i < n; ++i) {
-            size_t to = count[(from_keys[i] >> shift) & 255u]++;
-            to_keys[to] = from_keys[i];
-            to_values[to] = from_values[i];
-        }
-        x = from_keys, from_keys = to_keys, to_keys = x;
-        x = from_values, from_values = to_values, to_values = x;
+    meshfix__radix *x = (meshfix__radix *)context;
+    size_t i = meshfix__chunk_start(x->n, chunk, x->chunks), end = meshfix__chunk_start(x->n, chunk + 1, x->chunks);
+    unsigned int at[256];
+    int shift = x->shift;
+    /* counted in locals, copied once: neighbouring chunks' counts share cache lines */
+    MESHFIX_MEMCPY(at, x->at[chunk], sizeof(at));
+    if (!x->place) {
+        for (; i < end; ++i)
+            at[(x->from_keys[i] >> shift) & 255u]++;
+        MESHFIX_MEMCPY(x->at[chunk], at, sizeof(at));
+        return;
+    }
+    for (; i < end; ++i) {
+        unsigned int to = at[(x->from_keys[i] >> shift) & 255u]++;
+        x->to_keys[to] = x->from_keys[i];
+        x->to_values[to] = x->from_values[i];
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__radix_sort(unsigned int *keys, unsigned int *values, unsigned int *scratch_keys,
+                                          unsigned int *scratch_values, size_t n, const meshfix_options *parallel)
+{
+    meshfix__radix x;
+    unsigned int *from_keys = keys, *from_values = values, *to_keys = scratch_keys, *to_values = scratch_values, *t;
+    size_t c, d;
+    x.n = n;
+    x.chunks = n >= MESHFIX__PARALLEL_UNIT ? MESHFIX__RADIX_CHUNKS : 1;
+    for (x.shift = 0; x.shift < 32; x.shift += 8) {
+        unsigned int sum = 0;
+        x.from_keys = from_keys, x.from_values = from_values, x.to_keys = to_keys, x.to_values = to_values;
+        MESHFIX_MEMSET(x.at, 0, sizeof(x.at));
+        x.place = 0;
+        meshfix__run_tasks(parallel, meshfix__radix_chunk, &x, x.chunks);
+        for (d = 0; d < 256; ++d)
+            for (c = 0; c < x.chunks; ++c) {
+                unsigned int k = x.at[c][d];
+                x.at[c][d] = sum;
+                sum += k;
+            }
+        x.place = 1;
+        meshfix__run_tasks(parallel, meshfix__radix_chunk, &x, x.chunks);
+        t = from_keys, from_keys = to_keys, to_keys = t;
+        t = from_values, from_values = to_values, to_values = t;
     }
 }
 
@@ -4040,7 +4076,7 @@ MESHFIX__PRIVATE unsigned int meshfix__morton_tree(meshfix__bvh *b, const meshfi
     for (c = 0; c < 3; ++c)
         k.scale[c] = extent > 0.0 ? 1023.0 / extent : 0.0;
     meshfix__morton_phase(&k, MESHFIX__BUILD_CODES, parallel);
-    meshfix__radix_sort(k.codes, k.slot_of, k.scratch, k.scratch + k.n, k.n);
+    meshfix__radix_sort(k.codes, k.slot_of, k.scratch, k.scratch + k.n, k.n, parallel);
     /* the triangles in code order: the old order waits in the scratch */
     MESHFIX_MEMCPY(k.scratch, k.order, k.n * sizeof(unsigned int));
     meshfix__morton_phase(&k, MESHFIX__BUILD_GATHER, parallel);
