@@ -5289,15 +5289,27 @@ MESHFIX__PRIVATE unsigned int meshfix__stream(const meshfix__geometry *g, unsign
 }
 
 /* Areas of each unit's slots, cumulated, for drawing points by area. */
+MESHFIX__PRIVATE void meshfix__area_chunk(void *stage, size_t chunk)
+{
+    const meshfix__stage *s = (const meshfix__stage *)stage;
+    const meshfix__geometry *g = (const meshfix__geometry *)s->context;
+    size_t i, end;
+    double n[3];
+    for (meshfix__chunk_range(s, chunk, &i, &end); i < end; ++i)
+        meshfix__relative_normal(g->m, g->bvh.by_index[i], n, &g->bvh.cumulative_area[i]);
+}
+
+/* Each slot's area by chunks of slots (each written alone), then each
+   unit's running sum of them in slot order: the sums of one pass. */
 MESHFIX__PRIVATE void meshfix__cumulate_areas(meshfix__geometry *g)
 {
     meshfix__bvh *b = &g->bvh;
     unsigned int u, i;
+    meshfix__run_stage(g->o, meshfix__area_chunk, g, b->unit_first[b->unit_count], NULL);
     for (u = 0; u < b->unit_count; ++u) {
-        double sum = 0, n[3], area;
+        double sum = 0;
         for (i = b->unit_first[u]; i < b->unit_first[u + 1]; ++i) {
-            meshfix__relative_normal(g->m, b->by_index[i], n, &area);
-            sum += area;
+            sum += b->cumulative_area[i];
             b->cumulative_area[i] = sum;
         }
     }
@@ -7847,16 +7859,25 @@ MESHFIX__PRIVATE void meshfix__slots_by_patch(meshfix__geometry *g)
     MESHFIX_MEMCPY(b->order, b->by_index, b->count * sizeof(unsigned int));
 }
 
+/* Each triangle's unit (none without an area), by chunks of triangles. */
+MESHFIX__PRIVATE void meshfix__unit_of_chunk(void *stage, size_t chunk)
+{
+    const meshfix__stage *s = (const meshfix__stage *)stage;
+    const meshfix__geometry *g = (const meshfix__geometry *)s->context;
+    const meshfix__mesh *m = g->m;
+    size_t t, end;
+    for (meshfix__chunk_range(s, chunk, &t, &end); t < end; ++t)
+        g->triangle_unit[t] = meshfix__has_area(m, (unsigned int)t) ? g->patch_unit[m->tri_patch[t]] : MESHFIX__NONE;
+}
+
 /* Units known: the trees' slots, per unit, and the scratch for trees over
    units. Returns 0 when out of memory. */
 MESHFIX__PRIVATE int meshfix__prepare_units(meshfix__geometry *g)
 {
     meshfix__mesh *m = g->m;
     const meshfix__arena *a = &g->arena;
-    unsigned int t;
     size_t units = g->unit_count;
-    for (t = 0; t < m->triangle_count; ++t)
-        g->triangle_unit[t] = meshfix__has_area(m, t) ? g->patch_unit[m->tri_patch[t]] : MESHFIX__NONE;
+    meshfix__run_stage(g->o, meshfix__unit_of_chunk, g, m->triangle_count, NULL);
     g->units = (meshfix__unit *)meshfix__array(a, a->plan.units, units);
     g->unit_slots = (float *)meshfix__array(a, a->plan.unit_slots, 9 * units);
     g->unit_ids = (unsigned int *)meshfix__array(a, a->plan.unit_ids, units);
