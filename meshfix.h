@@ -5777,41 +5777,62 @@ MESHFIX__PRIVATE int meshfix__point_cell(const meshfix__grid *grid, const double
     return 1;
 }
 
-/* Fills the grid: a counting sort of (bucket, segment) for the cells of
-   a segment's two ends and middle (at most three entries a segment,
-   however long it is: the search looks for segments running alongside,
-   and those have a point near each of these). Pass 0 counts, pass 1
-   places. */
+/* The buckets segment s enters, for the cells of its two ends and middle
+   (at most three entries a segment, however long it is: the search looks
+   for segments running alongside, and those have a point near each of
+   these), in that order; returns how many. `beyond` != 0: only a segment
+   too long for cells that wide enters. */
+MESHFIX__PRIVATE int meshfix__segment_buckets(const meshfix__grid *grid, const meshfix__segment *s, double beyond,
+                                             double reach, size_t bucket[3])
+{
+    double points[3][3], cells[3][3];
+    int j, k, n = 0;
+    if (beyond != 0 && !meshfix__too_long_for(beyond, s, reach))
+        return 0;
+    for (k = 0; k < 3; ++k) {
+        points[0][k] = s->p[k];
+        points[1][k] = 0.5 * (s->p[k] + s->q[k]);
+        points[2][k] = s->q[k];
+    }
+    for (j = 0; j < 3; ++j) {
+        if (!meshfix__point_cell(grid, points[j], cells[j]) ||
+            (j > 0 && meshfix__compare_cells(cells[j], cells[j - 1]) == 0) ||
+            (j > 1 && meshfix__compare_cells(cells[j], cells[0]) == 0))
+            continue;
+        bucket[n++] = meshfix__grid_bucket(grid, cells[j][0], cells[j][1], cells[j][2]);
+    }
+    return n;
+}
+
+/* Segment i as an entry of a cell. */
+MESHFIX__PRIVATE void meshfix__cell_item_of(const meshfix__segment *segments, unsigned int i, meshfix__cell_item *item)
+{
+    int k;
+    for (k = 0; k < 3; ++k) {
+        double middle = 0.5 * (segments[i].p[k] + segments[i].q[k]); /* a double first, as the search's middle */
+        item->middle[k] = (float)middle;
+    }
+    item->half = (float)(0.5 * segments[i].length);
+    item->segment = i;
+    item->patch = segments[i].patch;
+}
+
+/* Fills the grid: a counting sort of (bucket, segment), segment by
+   segment, each's entries in the order of meshfix__segment_buckets. Pass
+   0 counts, pass 1 places. */
 MESHFIX__PRIVATE void meshfix__grid_pass(meshfix__grid *grid, const meshfix__segment *segments, unsigned int count,
                                         double beyond, double reach, int place)
 {
     unsigned int i;
-    int j, k;
+    int j, n;
+    size_t bucket[3];
     for (i = 0; i < count; ++i) {
-        double points[3][3], cells[3][3];
-        if (beyond != 0 && !meshfix__too_long_for(beyond, &segments[i], reach))
-            continue;
-        for (k = 0; k < 3; ++k) {
-            points[0][k] = segments[i].p[k];
-            points[1][k] = 0.5 * (segments[i].p[k] + segments[i].q[k]);
-            points[2][k] = segments[i].q[k];
-        }
-        for (j = 0; j < 3; ++j) {
-            size_t bucket;
-            if (!meshfix__point_cell(grid, points[j], cells[j]) ||
-                (j > 0 && meshfix__compare_cells(cells[j], cells[j - 1]) == 0) ||
-                (j > 1 && meshfix__compare_cells(cells[j], cells[0]) == 0))
-                continue;
-            bucket = meshfix__grid_bucket(grid, cells[j][0], cells[j][1], cells[j][2]);
-            if (place) {
-                meshfix__cell_item *item = &grid->items[grid->start[bucket]++];
-                for (k = 0; k < 3; ++k)
-                    item->middle[k] = (float)points[1][k];
-                item->half = (float)(0.5 * segments[i].length);
-                item->segment = i;
-                item->patch = segments[i].patch;
-            } else
-                grid->start[bucket + 1]++;
+        n = meshfix__segment_buckets(grid, &segments[i], beyond, reach, bucket);
+        for (j = 0; j < n; ++j) {
+            if (place)
+                meshfix__cell_item_of(segments, i, &grid->items[grid->start[bucket[j]]++]);
+            else
+                grid->start[bucket[j] + 1]++;
         }
     }
 }
@@ -5839,6 +5860,70 @@ MESHFIX__PRIVATE void meshfix__sort_pairs(meshfix__pair *pairs, meshfix__pair *t
     }
     if (src != pairs)
         MESHFIX_MEMCPY(pairs, src, n * sizeof(meshfix__pair));
+}
+
+/* A stable sort of pairs over the chunks of meshfix__stage_chunks: each
+   chunk sorted alone, then neighbouring runs merged, a round at a time
+   (a run's pairs before the next's at a tie). A stable sort by a strict
+   order has one result: the pairs end as the one-pass sort leaves them. */
+typedef struct meshfix__pair_sorter {
+    meshfix__pair *pairs, *tmp, *from, *to;
+    size_t n, chunks, width; /* merging: runs of `width` chunks, two a task */
+    int (*before)(const meshfix__pair *, const meshfix__pair *);
+    int into_tmp;            /* sorting: each chunk ends in tmp, not pairs */
+} meshfix__pair_sorter;
+
+MESHFIX__PRIVATE void meshfix__pair_sort_task(void *context, size_t index)
+{
+    meshfix__pair_sorter *k = (meshfix__pair_sorter *)context;
+    if (k->width == 0) {
+        size_t lo = meshfix__chunk_start(k->n, index, k->chunks), hi = meshfix__chunk_start(k->n, index + 1, k->chunks);
+        meshfix__sort_pairs(k->pairs + lo, k->tmp + lo, hi - lo, k->before);
+        if (k->into_tmp)
+            MESHFIX_MEMCPY(k->tmp + lo, k->pairs + lo, (hi - lo) * sizeof(meshfix__pair));
+    } else {
+        size_t first = 2 * index * k->width, middle = first + k->width, last = middle + k->width;
+        size_t lo = meshfix__chunk_start(k->n, first, k->chunks);
+        size_t mid = meshfix__chunk_start(k->n, middle < k->chunks ? middle : k->chunks, k->chunks);
+        size_t hi = meshfix__chunk_start(k->n, last < k->chunks ? last : k->chunks, k->chunks);
+        size_t a = lo, b = mid, at = lo;
+        while (a < mid && b < hi)
+            k->to[at++] = k->before(&k->from[b], &k->from[a]) ? k->from[b++] : k->from[a++];
+        while (a < mid)
+            k->to[at++] = k->from[a++];
+        while (b < hi)
+            k->to[at++] = k->from[b++];
+    }
+}
+
+MESHFIX__PRIVATE void meshfix__sort_pairs_in_chunks(const meshfix_options *o, meshfix__pair *pairs, meshfix__pair *tmp,
+                                                   size_t n, int (*before)(const meshfix__pair *, const meshfix__pair *))
+{
+    meshfix__pair_sorter k;
+    size_t width, rounds = 0;
+    k.pairs = pairs;
+    k.tmp = tmp;
+    k.n = n;
+    k.chunks = meshfix__stage_chunks(n);
+    k.before = before;
+    if (k.chunks == 1) {
+        meshfix__sort_pairs(pairs, tmp, n, before);
+        return;
+    }
+    for (width = 1; width < k.chunks; width *= 2)
+        rounds++;
+    /* the rounds alternate between the arrays: they end in `pairs` */
+    k.into_tmp = rounds % 2 == 1;
+    k.width = 0;
+    meshfix__run_tasks(o, meshfix__pair_sort_task, &k, k.chunks);
+    k.from = k.into_tmp ? tmp : pairs;
+    k.to = k.into_tmp ? pairs : tmp;
+    for (k.width = 1; k.width < k.chunks; k.width *= 2) {
+        meshfix__pair *next = k.from;
+        meshfix__run_tasks(o, meshfix__pair_sort_task, &k, (k.chunks + 2 * k.width - 1) / (2 * k.width));
+        k.from = k.to;
+        k.to = next;
+    }
 }
 
 MESHFIX__PRIVATE int meshfix__pair_key_before(const meshfix__pair *x, const meshfix__pair *y)
@@ -5874,13 +5959,14 @@ typedef struct meshfix__coherence {
    frame scaled by 1 / scale, triangle by triangle and, in a triangle, by
    vertex id: flipping a triangle renumbers its half-edges, and the order
    of the segments must not depend on the winding (it decides which
-   candidates a crowded search looks at). */
-MESHFIX__PRIVATE unsigned int meshfix__collect_segments(const meshfix__geometry *g, double scale,
-                                                        meshfix__segment *segments)
+   candidates a crowded search looks at). Triangles [first, end); with
+   segments NULL, only counts them. */
+MESHFIX__PRIVATE unsigned int meshfix__collect_segments(const meshfix__geometry *g, double scale, size_t first,
+                                                        size_t end, meshfix__segment *segments)
 {
     const meshfix__mesh *m = g->m;
     unsigned int t, n = 0, c, sorted[3];
-    for (t = 0; t < m->triangle_count; ++t) {
+    for (t = (unsigned int)first; t < end; ++t) {
         if (!meshfix__has_area(m, t))
             continue;
         meshfix__sorted_triangle(m, t, sorted);
@@ -5892,11 +5978,92 @@ MESHFIX__PRIVATE unsigned int meshfix__collect_segments(const meshfix__geometry 
                 if ((m->indices[h] == a && m->indices[next] == b) || (m->indices[h] == b && m->indices[next] == a))
                     break;
             }
-            if (m->mate[h] == MESHFIX__NONE)
-                meshfix__edge_segment(g, h, scale, &segments[n++]);
+            if (m->mate[h] == MESHFIX__NONE) {
+                if (segments != NULL)
+                    meshfix__edge_segment(g, h, scale, &segments[n]);
+                n++;
+            }
         }
     }
     return n;
+}
+
+/* The boundary (count[0]) and ring (count[1]) half-edges of triangles
+   [t, end) into chunk `chunk` of stage s. */
+MESHFIX__PRIVATE void meshfix__count_boundary(const meshfix__mesh *m, meshfix__stage *s, size_t chunk, size_t t,
+                                             size_t end)
+{
+    size_t h, boundary = 0, rings = 0;
+    for (h = 3 * t; h < 3 * end; ++h) {
+        boundary += m->mate[h] == MESHFIX__NONE;
+        rings += (size_t)meshfix__is_ring(m->mate[h]);
+    }
+    s->count[chunk][0] = boundary;
+    s->count[chunk][1] = rings;
+}
+
+/* A stage over the mesh's triangles: their boundary and ring half-edges. */
+MESHFIX__PRIVATE void meshfix__boundary_chunk(void *stage, size_t chunk)
+{
+    meshfix__stage *s = (meshfix__stage *)stage;
+    size_t t, end;
+    meshfix__chunk_range(s, chunk, &t, &end);
+    meshfix__count_boundary((const meshfix__mesh *)s->context, s, chunk, t, end);
+}
+
+/* Stage 1 over chunks of triangles (meshfix__run_stage): each chunk
+   counts its boundary and ring half-edges, then writes its segments (at
+   most one a boundary half-edge) from where the chunks before it end
+   their boundary half-edges; the chunks' segments are then moved
+   together in chunk order (where no triangle without area had a boundary
+   edge, they are already): in triangle order, as one pass lays them. */
+typedef struct meshfix__collect_task {
+    const meshfix__geometry *g;
+    double scale;
+    meshfix__segment *segments;         /* NULL: the counting pass */
+    size_t first[MESHFIX__STAGE_CHUNKS]; /* per chunk: its boundary half-edges, then where its segments go */
+} meshfix__collect_task;
+
+MESHFIX__PRIVATE void meshfix__collect_chunk(void *stage, size_t chunk)
+{
+    meshfix__stage *s = (meshfix__stage *)stage;
+    meshfix__collect_task *task = (meshfix__collect_task *)s->context;
+    size_t t, end;
+    meshfix__chunk_range(s, chunk, &t, &end);
+    if (task->segments == NULL) {
+        meshfix__count_boundary(task->g->m, s, chunk, t, end);
+        task->first[chunk] = s->count[chunk][0];
+    } else
+        s->count[chunk][0] = meshfix__collect_segments(task->g, task->scale, t, end, task->segments + task->first[chunk]);
+}
+
+/* The boundary segments of the mesh into `segments` (room for `boundary`,
+   the boundary half-edges counted by the first pass of `task`). Returns
+   how many. */
+MESHFIX__PRIVATE unsigned int meshfix__collect_all(const meshfix_options *o, meshfix__collect_task *task,
+                                                  meshfix__segment *segments)
+{
+    meshfix__stage s;
+    size_t c, sum = 0, at = 0, i;
+    s.n = task->g->m->triangle_count;
+    s.chunks = meshfix__stage_chunks(s.n);
+    s.context = task;
+    for (c = 0; c < s.chunks; ++c) {
+        size_t count = task->first[c];
+        task->first[c] = sum;
+        sum += count;
+        s.count[c][0] = s.count[c][1] = 0;
+    }
+    task->segments = segments;
+    meshfix__run_tasks(o, meshfix__collect_chunk, &s, s.chunks);
+    for (c = 0; c < s.chunks; ++c) {
+        /* down, never over what is still to move: a forward copy */
+        if (task->first[c] != at)
+            for (i = 0; i < s.count[c][0]; ++i)
+                segments[at + i] = segments[task->first[c] + i];
+        at += s.count[c][0];
+    }
+    return (unsigned int)at;
 }
 
 /* Stage 2: a hash grid of cells at least the search distance and the
@@ -5910,8 +6077,139 @@ MESHFIX__PRIVATE size_t meshfix__grid_buckets(size_t segments)
     return buckets;
 }
 
+/* The grid over chunks of segments (from MESHFIX__PARALLEL_UNIT
+   segments on), its buckets in partitions as the welder's join has
+   them: each chunk finds its segments' buckets and counts them per
+   partition, each chunk moves its entries into their partitions (in
+   segment order within each), and each partition sorts its own into
+   its buckets. A bucket ends with the entries one pass gives it, in the
+   same order. `entries` is scratch for 9 unsigned ints per segment. */
+#define MESHFIX__GRID_BUCKETS 0 /* per chunk of segments: their buckets, counts per partition */
+#define MESHFIX__GRID_SPLIT 1   /* per chunk: its entries into their partitions */
+#define MESHFIX__GRID_PLACE 2   /* per partition: its buckets' starts and items */
+
+typedef struct meshfix__grid_task {
+    meshfix__grid *grid;
+    const meshfix__segment *segments;
+    unsigned int n;
+    double beyond, reach;
+    unsigned int *bucket_of;                  /* 3 per segment: the buckets it enters, NONE after the last */
+    unsigned int *entry_bucket, *entry_item;  /* 3 per segment at most: partition by partition */
+    size_t chunks, parts, shift;              /* bucket b lies in partition b >> shift */
+    int phase;
+    unsigned int at[MESHFIX__STAGE_CHUNKS][MESHFIX__STAGE_CHUNKS]; /* [chunk][partition]: count, then next place */
+    unsigned int part_start[MESHFIX__STAGE_CHUNKS + 1];
+} meshfix__grid_task;
+
+MESHFIX__PRIVATE void meshfix__grid_buckets_of(meshfix__grid_task *k, size_t chunk)
+{
+    size_t i = meshfix__chunk_start(k->n, chunk, k->chunks), end = meshfix__chunk_start(k->n, chunk + 1, k->chunks);
+    unsigned int count[MESHFIX__STAGE_CHUNKS] = {0};
+    size_t bucket[3], j, n;
+    for (; i < end; ++i) {
+        n = (size_t)meshfix__segment_buckets(k->grid, &k->segments[i], k->beyond, k->reach, bucket);
+        for (j = 0; j < 3; ++j) {
+            k->bucket_of[3 * i + j] = j < n ? (unsigned int)bucket[j] : MESHFIX__NONE;
+            if (j < n)
+                count[bucket[j] >> k->shift]++;
+        }
+    }
+    MESHFIX_MEMCPY(k->at[chunk], count, sizeof(count));
+}
+
+MESHFIX__PRIVATE void meshfix__grid_split(meshfix__grid_task *k, size_t chunk)
+{
+    size_t i = meshfix__chunk_start(k->n, chunk, k->chunks), end = meshfix__chunk_start(k->n, chunk + 1, k->chunks);
+    unsigned int next[MESHFIX__STAGE_CHUNKS];
+    size_t j;
+    MESHFIX_MEMCPY(next, k->at[chunk], sizeof(next));
+    for (; i < end; ++i)
+        for (j = 0; j < 3 && k->bucket_of[3 * i + j] != MESHFIX__NONE; ++j) {
+            unsigned int b = k->bucket_of[3 * i + j], at = next[b >> k->shift]++;
+            k->entry_bucket[at] = b;
+            k->entry_item[at] = (unsigned int)i;
+        }
+}
+
+MESHFIX__PRIVATE void meshfix__grid_place(meshfix__grid_task *k, size_t part)
+{
+    meshfix__grid *grid = k->grid;
+    size_t b, first = part << k->shift, end = (part + 1) << k->shift, i;
+    unsigned int begin = k->part_start[part], last = k->part_start[part + 1], sum = begin;
+    /* first the counts, then where each bucket starts: start[b] ends as
+       where bucket b ends, as after one pass */
+    for (i = begin; i < last; ++i)
+        grid->start[k->entry_bucket[i]]++;
+    for (b = first; b < end; ++b) {
+        unsigned int n = grid->start[b];
+        if (n != 0)
+            grid->occupied[b >> 3] = (unsigned char)(grid->occupied[b >> 3] | (1u << (b & 7)));
+        grid->start[b] = sum;
+        sum += n;
+    }
+    for (i = begin; i < last; ++i)
+        meshfix__cell_item_of(k->segments, k->entry_item[i], &grid->items[grid->start[k->entry_bucket[i]]++]);
+}
+
+MESHFIX__PRIVATE void meshfix__grid_task_run(void *context, size_t index)
+{
+    meshfix__grid_task *k = (meshfix__grid_task *)context;
+    if (k->phase == MESHFIX__GRID_BUCKETS)
+        meshfix__grid_buckets_of(k, index);
+    else if (k->phase == MESHFIX__GRID_SPLIT)
+        meshfix__grid_split(k, index);
+    else
+        meshfix__grid_place(k, index);
+}
+
+/* The grid's buckets and items over chunks (grid->start and occupied
+   zeroed, grid->cell and mask set). Returns 0 when out of memory. */
+MESHFIX__PRIVATE int meshfix__index_in_chunks(meshfix__geometry *g, meshfix__grid *grid, const meshfix__segment *segments,
+                                             unsigned int n, double reach, double beyond, unsigned int *entries)
+{
+    meshfix__grid_task k;
+    size_t c, p, buckets = grid->mask + 1;
+    unsigned int sum = 0;
+    k.grid = grid;
+    k.segments = segments;
+    k.n = n;
+    k.beyond = beyond;
+    k.reach = reach;
+    k.bucket_of = entries;
+    k.entry_bucket = entries + 3 * (size_t)n;
+    k.entry_item = entries + 6 * (size_t)n;
+    k.chunks = meshfix__stage_chunks(n);
+    /* a partition covers whole bytes of `occupied` */
+    for (k.shift = 3; (buckets >> k.shift) > k.chunks; ++k.shift) {
+    }
+    k.parts = buckets >> k.shift;
+    k.phase = MESHFIX__GRID_BUCKETS;
+    meshfix__run_tasks(g->o, meshfix__grid_task_run, &k, k.chunks);
+    /* each partition's entries chunk by chunk: in segment order */
+    for (p = 0; p < k.parts; ++p) {
+        k.part_start[p] = sum;
+        for (c = 0; c < k.chunks; ++c) {
+            unsigned int count = k.at[c][p];
+            k.at[c][p] = sum;
+            sum += count;
+        }
+    }
+    k.part_start[k.parts] = sum;
+    grid->start[buckets] = sum;
+    grid->items = (meshfix__cell_item *)meshfix__array(&g->arena, g->arena.plan.grid_items, sum);
+    if (grid->items == NULL)
+        return 0;
+    k.phase = MESHFIX__GRID_SPLIT;
+    meshfix__run_tasks(g->o, meshfix__grid_task_run, &k, k.chunks);
+    k.phase = MESHFIX__GRID_PLACE;
+    meshfix__run_tasks(g->o, meshfix__grid_task_run, &k, k.parts);
+    return 1;
+}
+
+/* `entries`: scratch for meshfix__index_in_chunks (NULL: one pass here). */
 MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix__segment *segments,
-                                            unsigned int n, double reach, double beyond, meshfix__grid *grid)
+                                            unsigned int n, double reach, double beyond, meshfix__grid *grid,
+                                            unsigned int *entries)
 {
     double average = 0;
     size_t buckets, k, indexed = 0;
@@ -5931,6 +6229,9 @@ MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix
         return 0;
     MESHFIX_MEMSET(grid->start, 0, (buckets + 1) * sizeof(unsigned int));
     MESHFIX_MEMSET(grid->occupied, 0, buckets / 8);
+    /* buckets below NONE: each fits an entry */
+    if (entries != NULL && meshfix__stage_chunks(n) > 1 && grid->mask < MESHFIX__NONE)
+        return meshfix__index_in_chunks(g, grid, segments, n, reach, beyond, entries);
     meshfix__grid_pass(grid, segments, n, beyond, reach, 0);
     for (k = 0; k < buckets; ++k) {
         if (grid->start[k + 1] != 0)
@@ -6114,25 +6415,63 @@ MESHFIX__PRIVATE int meshfix__any_too_long(const meshfix__segment *segments, uns
    sheets. */
 #define MESHFIX__ONE_WAY_FARTHER 2.0
 #define MESHFIX__ONE_WAY_SLACK 0.05
-MESHFIX__PRIVATE void meshfix__pair_partners(meshfix__segment *segments, unsigned int n, meshfix__pair *pairs,
-                                            size_t *pair_count)
+/* Whether segment i's choice gives a pair (sets its `matched`). */
+MESHFIX__PRIVATE int meshfix__partner_pairs(meshfix__segment *segments, unsigned int i)
 {
-    unsigned int i;
-    for (i = 0; i < n; ++i) {
-        meshfix__segment *s = &segments[i], *f;
-        double c;
-        if (s->partner == MESHFIX__NONE)
-            continue;
-        f = &segments[s->partner];
-        c = meshfix__local_coherence(s, f, s->distance);
-        if ((f->partner != i && s->distance > MESHFIX__ONE_WAY_FARTHER * f->distance + MESHFIX__ONE_WAY_SLACK * s->length) ||
-            meshfix__stacked(s, f)) {
-            s->matched = 0;
-            continue;
+    meshfix__segment *s = &segments[i], *f;
+    if (s->partner == MESHFIX__NONE)
+        return 0;
+    f = &segments[s->partner];
+    s->matched = !((f->partner != i && s->distance > MESHFIX__ONE_WAY_FARTHER * f->distance + MESHFIX__ONE_WAY_SLACK * s->length) ||
+                   meshfix__stacked(s, f));
+    return s->matched;
+}
+
+/* Over chunks of segments (meshfix__run_stage): first each chunk marks
+   and counts its segments that give a pair, then each writes their pairs
+   from where the chunks before it end: in segment order. A segment
+   writes only its own mark, and reads only its partner's choice. */
+typedef struct meshfix__pairing_task {
+    meshfix__segment *segments;
+    meshfix__pair *pairs; /* NULL: the counting pass */
+    size_t first[MESHFIX__STAGE_CHUNKS]; /* per chunk: its pairs, then where they start */
+} meshfix__pairing_task;
+
+MESHFIX__PRIVATE void meshfix__pairing_chunk(void *stage, size_t chunk)
+{
+    meshfix__stage *s = (meshfix__stage *)stage;
+    meshfix__pairing_task *task = (meshfix__pairing_task *)s->context;
+    meshfix__segment *segments = task->segments;
+    size_t i, end, count = 0;
+    meshfix__chunk_range(s, chunk, &i, &end);
+    for (; i < end; ++i) {
+        if (task->pairs == NULL)
+            count += (size_t)meshfix__partner_pairs(segments, (unsigned int)i);
+        else if (segments[i].matched) {
+            const meshfix__segment *f = &segments[segments[i].partner];
+            meshfix__add_pair(task->pairs, &task->first[chunk], &segments[i], f,
+                              meshfix__local_coherence(&segments[i], f, segments[i].distance));
         }
-        s->matched = 1;
-        meshfix__add_pair(pairs, pair_count, s, f, c);
     }
+    if (task->pairs == NULL)
+        task->first[chunk] = count;
+}
+
+MESHFIX__PRIVATE void meshfix__pair_partners(const meshfix_options *o, meshfix__segment *segments, unsigned int n,
+                                            meshfix__pair *pairs, size_t *pair_count)
+{
+    meshfix__pairing_task task;
+    size_t c, chunks = meshfix__stage_chunks(n);
+    task.segments = segments;
+    task.pairs = NULL;
+    meshfix__run_stage(o, meshfix__pairing_chunk, &task, n, NULL);
+    for (c = 0; c < chunks; ++c) {
+        size_t count = task.first[c];
+        task.first[c] = *pair_count;
+        *pair_count += count;
+    }
+    task.pairs = pairs;
+    meshfix__run_stage(o, meshfix__pairing_chunk, &task, n, NULL);
 }
 
 /* Where the triangle of half-edge h lies around its edge: an angle in
@@ -6276,10 +6615,10 @@ MESHFIX__PRIVATE void meshfix__ring_pairs(const meshfix__geometry *g, double sca
 
 /* Stage 6: one pair per two patches, coherences and lengths summed in a
    canonical order, strongest first. */
-MESHFIX__PRIVATE size_t meshfix__sum_pairs(meshfix__pair *pairs, meshfix__pair *tmp, size_t n)
+MESHFIX__PRIVATE size_t meshfix__sum_pairs(const meshfix_options *o, meshfix__pair *pairs, meshfix__pair *tmp, size_t n)
 {
     size_t k, out = 0;
-    meshfix__sort_pairs(pairs, tmp, n, meshfix__pair_key_before);
+    meshfix__sort_pairs_in_chunks(o, pairs, tmp, n, meshfix__pair_key_before);
     for (k = 0; k < n; ++k) {
         if (out > 0 && pairs[out - 1].a == pairs[k].a && pairs[out - 1].b == pairs[k].b) {
             meshfix__pair *sum = &pairs[out - 1];
@@ -6320,12 +6659,14 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
 {
     meshfix__mesh *m = g->m;
     const meshfix_options *o = g->o;
-    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count), boundary = 0, rings = 0, largest;
+    unsigned int boundary, rings, largest;
     double longest = 0, scale, reach;
     meshfix__pair *tmp = NULL;
     meshfix__grid grid;
-    unsigned int *work = NULL, *members = NULL;
+    meshfix__collect_task collect;
+    unsigned int *work = NULL, *members = NULL, *entries;
     double *angle = NULL;
+    size_t ring_edges;
     int axis, ok = 0;
     MESHFIX_MEMSET(out, 0, sizeof(*out));
     MESHFIX_MEMSET(&grid, 0, sizeof(grid));
@@ -6334,11 +6675,12 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
     scale = longest > 0 ? 1.0 / longest : 1.0;
     g->length_unit = (longest > 0 ? longest : 1.0) / g->bvh.scale;
     reach = (double)o->visibility.coherence_distance;
-    for (h = 0; h < half_edges; ++h) {
-        boundary += m->mate[h] == MESHFIX__NONE;
-        rings += (unsigned int)meshfix__is_ring(m->mate[h]);
-    }
-    largest = meshfix__largest_ring(m);
+    collect.g = g;
+    collect.scale = scale;
+    collect.segments = NULL;
+    boundary = (unsigned int)meshfix__run_stage(o, meshfix__collect_chunk, &collect, m->triangle_count, &ring_edges);
+    rings = (unsigned int)ring_edges;
+    largest = rings != 0 ? meshfix__largest_ring(m) : 0;
     out->segments = (meshfix__segment *)meshfix__array(&g->arena, g->arena.plan.segments, boundary);
     out->pairs = (meshfix__pair *)meshfix__array(&g->arena, g->arena.plan.pairs, (size_t)boundary + rings);
     tmp = (meshfix__pair *)meshfix__array(&g->arena, g->arena.plan.pair_scratch, (size_t)boundary + rings);
@@ -6347,23 +6689,28 @@ MESHFIX__PRIVATE int meshfix__measure_coherence(meshfix__geometry *g, meshfix__c
     angle = (double *)meshfix__array(&g->arena, g->arena.plan.ring_angles, largest);
     if (!out->segments || !out->pairs || !tmp || !work || !members || !angle)
         goto done;
-    out->segment_count = meshfix__collect_segments(g, scale, out->segments);
+    out->segment_count = meshfix__collect_all(o, &collect, out->segments);
+    /* the pairs' scratch, free until their sort, holds the grid's entries
+       while it is built in chunks */
+    entries = 9 * sizeof(unsigned int) <= sizeof(meshfix__pair) ? (unsigned int *)(void *)tmp : NULL;
     if (out->segment_count != 0) {
         double first_cell;
-        if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, 0.0, &grid))
+        if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, 0.0, &grid, entries))
             goto done;
         meshfix__find_all_partners(g, out->segments, out->segment_count, &grid, reach, 0.0);
         first_cell = grid.cell;
         if (meshfix__any_too_long(out->segments, out->segment_count, first_cell, reach)) {
             /* the same arrays again, for the long segments alone */
-            if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, first_cell, &grid))
+            if (!meshfix__index_segments(g, out->segments, out->segment_count, reach, first_cell, &grid, entries))
                 goto done;
             meshfix__find_all_partners(g, out->segments, out->segment_count, &grid, reach, first_cell);
         }
-        meshfix__pair_partners(out->segments, out->segment_count, out->pairs, &out->pair_count);
+        meshfix__pair_partners(o, out->segments, out->segment_count, out->pairs, &out->pair_count);
     }
-    meshfix__ring_pairs(g, scale, work, angle, members, out->pairs, &out->pair_count);
-    out->pair_count = meshfix__sum_pairs(out->pairs, tmp, out->pair_count);
+    /* without ring edges, no ring */
+    if (rings != 0)
+        meshfix__ring_pairs(g, scale, work, angle, members, out->pairs, &out->pair_count);
+    out->pair_count = meshfix__sum_pairs(o, out->pairs, tmp, out->pair_count);
     ok = 1;
 done:
     return ok;
@@ -8194,17 +8541,12 @@ typedef struct meshfix__geometry_counts {
     size_t triangles, patches, boundary, rings, largest_ring; /* boundary and ring half-edges */
 } meshfix__geometry_counts;
 
-MESHFIX__PRIVATE void meshfix__count_geometry(const meshfix__mesh *m, meshfix__geometry_counts *c)
+MESHFIX__PRIVATE void meshfix__count_geometry(meshfix__mesh *m, meshfix__geometry_counts *c)
 {
-    unsigned int h, half_edges = (unsigned int)(3 * m->triangle_count);
     c->triangles = m->triangle_count;
     c->patches = m->patch_count;
-    c->boundary = c->rings = 0;
-    for (h = 0; h < half_edges; ++h) {
-        c->boundary += m->mate[h] == MESHFIX__NONE;
-        c->rings += (size_t)meshfix__is_ring(m->mate[h]);
-    }
-    c->largest_ring = meshfix__largest_ring(m);
+    c->boundary = meshfix__run_stage(m->options, meshfix__boundary_chunk, m, m->triangle_count, &c->rings);
+    c->largest_ring = c->rings != 0 ? meshfix__largest_ring(m) : 0; /* without ring edges, no ring */
 }
 
 /* Lays out every array of the geometric stage (meshfix__geometry_plan)

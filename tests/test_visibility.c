@@ -747,8 +747,8 @@ static void test_parallel_for_identical(void)
 }
 
 /* The stages before and after the decision (the join, the edges, the
-   flood fill, the sums, the write) on chunks of MESHFIX__PARALLEL_UNIT
-   triangles and more: on 2 and 4 real threads and in reverse order, what
+   flood fill, the sums, the write) and the coherence stage on chunks of
+   MESHFIX__PARALLEL_UNIT triangles, segments or pairs and more: on 2 and 4 real threads and in reverse order, what
    one thread gives, bit for bit, written in place or not. A Moebius strip
    (a seam: the fill runs again in order), a shuffled sphere (every chunk
    joins the others), a soup (every corner joined), 16-bit indices,
@@ -849,6 +849,29 @@ static void test_threads_stages(void)
     same_on_threads("soup of the sphere", &soup, soup.positions, o);
     o.policy = MESHFIX_POLICY_MAJORITY;
     same_on_threads("soup of the sphere, no positions", &soup, NULL, o);
+    free(soup.indices);
+    free(soup.positions);
+    mio_free(&g);
+
+    /* the coherence stage on chunks (MESHFIX__PARALLEL_UNIT segments and
+       pairs and more): a smaller sphere's soup with TOPOLOGY_INDICES, a
+       patch per triangle, every edge a boundary segment whose partner is
+       its neighbour's */
+    memset(&g, 0, sizeof(g));
+    CHECK(gen_sphere(&g, 100, 120, 0, 0, 0, 1));
+    CHECK(g.index_count >= MESHFIX__PARALLEL_UNIT + 1000);
+    memset(&soup, 0, sizeof(soup));
+    soup.index_count = soup.vertex_count = g.index_count;
+    soup.indices = (unsigned int *)malloc(soup.index_count * sizeof(unsigned int));
+    soup.positions = (float *)malloc(soup.vertex_count * 3 * sizeof(float));
+    for (t = 0; t < soup.index_count; ++t) {
+        soup.indices[t] = (unsigned int)t;
+        memcpy(soup.positions + 3 * t, g.positions + 3 * (size_t)g.indices[t], 3 * sizeof(float));
+    }
+    gen_flip_random(&soup, 0.3, 5, NULL);
+    memset(&o, 0, sizeof(o));
+    o.topology = MESHFIX_TOPOLOGY_INDICES;
+    same_on_threads("soup of a sphere, TOPOLOGY_INDICES (a patch per triangle), AUTO", &soup, soup.positions, o);
     free(soup.indices);
     free(soup.positions);
     mio_free(&g);
@@ -1152,7 +1175,7 @@ static const test_case tests[] = {
     {"independent of triangle order and of how much was flipped", test_order_and_flip_independence},
     {"parallel_for gives bit-identical results; confidence in [0, 1]", test_parallel_for_identical},
     {"AUTO with 2 and 4 real threads gives the single-threaded result", test_threads_identical},
-    {"the input, edge, fill, sum and write stages on threads give one thread's result", test_threads_stages},
+    {"the input, edge, fill, coherence, sum and write stages on threads give one thread's result", test_threads_stages},
     {"weld: exact, tolerance, -0, NaN", test_weld},
     {"watertight rays through shared vertices and edges", test_watertight_rays},
     {"trees of both builders answer as brute force does", test_trees_against_brute_force},
