@@ -21,6 +21,8 @@ int gen_grid(mio_mesh *m, unsigned nx, unsigned ny);
 int gen_mobius(mio_mesh *m, unsigned n);
 /* Appends src to dst (indices shifted). */
 int gen_append(mio_mesh *dst, const mio_mesh *src);
+/* A soup of src: every corner its own vertex, at its position. */
+int gen_soup(mio_mesh *out, const mio_mesh *src);
 /* Reverses each triangle with probability `fraction`; marks[t] = 1 for the
    reversed ones when marks is not NULL. Returns how many were reversed. */
 size_t gen_flip_random(mio_mesh *m, double fraction, unsigned long long seed, unsigned char *marks);
@@ -279,6 +281,18 @@ int gen_append(mio_mesh *dst, const mio_mesh *src)
         dst->indices[dst->index_count + i] = src->indices[i] + (unsigned int)dst->vertex_count;
     dst->vertex_count += src->vertex_count;
     dst->index_count += src->index_count;
+    return 1;
+}
+
+int gen_soup(mio_mesh *out, const mio_mesh *src)
+{
+    size_t i;
+    if (!gen_alloc(out, src->index_count, src->index_count / 3))
+        return 0;
+    for (i = 0; i < src->index_count; ++i) {
+        out->indices[i] = (unsigned int)i;
+        memcpy(out->positions + 3 * i, src->positions + 3 * (size_t)src->indices[i], 3 * sizeof(float));
+    }
     return 1;
 }
 

@@ -353,14 +353,7 @@ static void test_weld_topology(void)
     double pd[3 * 64];
     CHECK(gen_sphere(&g, 6, 8, 0, 0, 0, 1));
     /* a soup: every corner its own vertex, moved by up to 1e-5 */
-    memset(&soup, 0, sizeof(soup));
-    soup.index_count = soup.vertex_count = g.index_count;
-    soup.indices = (unsigned int *)malloc(g.index_count * sizeof(unsigned int));
-    soup.positions = (float *)malloc(3 * g.index_count * sizeof(float));
-    for (i = 0; i < g.index_count; ++i) {
-        soup.indices[i] = (unsigned int)i;
-        memcpy(soup.positions + 3 * i, g.positions + 3 * (size_t)g.indices[i], 3 * sizeof(float));
-    }
+    CHECK(gen_soup(&soup, &g));
     for (i = 0; i < 3 * soup.vertex_count; ++i)
         soup.positions[i] += (float)((double)((i * 2654435761u) % 1000) * 1e-8);
     CHECK_EQ(meshfix_inspect(soup.indices, soup.index_count, soup.positions, soup.vertex_count, 0, NULL, &exact, NULL),

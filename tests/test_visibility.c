@@ -811,7 +811,6 @@ static void test_threads_stages(void)
 {
     mio_mesh g, soup;
     meshfix_options o;
-    size_t t;
     memset(&g, 0, sizeof(g));
     memset(&o, 0, sizeof(o));
     CHECK(gen_mobius(&g, MESHFIX__PARALLEL_UNIT / 2 + 500));
@@ -837,14 +836,7 @@ static void test_threads_stages(void)
     o.topology = MESHFIX_TOPOLOGY_POSITIONS;
 
     /* every triangle its own corners: the join makes the sphere again */
-    memset(&soup, 0, sizeof(soup));
-    soup.index_count = soup.vertex_count = g.index_count;
-    soup.indices = (unsigned int *)malloc(soup.index_count * sizeof(unsigned int));
-    soup.positions = (float *)malloc(soup.vertex_count * 3 * sizeof(float));
-    for (t = 0; t < soup.index_count; ++t) {
-        soup.indices[t] = (unsigned int)t;
-        memcpy(soup.positions + 3 * t, g.positions + 3 * (size_t)g.indices[t], 3 * sizeof(float));
-    }
+    CHECK(gen_soup(&soup, &g));
     o.policy = MESHFIX_POLICY_OUTWARD;
     same_on_threads("soup of the sphere", &soup, soup.positions, o);
     o.policy = MESHFIX_POLICY_MAJORITY;
@@ -860,14 +852,7 @@ static void test_threads_stages(void)
     memset(&g, 0, sizeof(g));
     CHECK(gen_sphere(&g, 100, 120, 0, 0, 0, 1));
     CHECK(g.index_count >= MESHFIX__PARALLEL_UNIT + 1000);
-    memset(&soup, 0, sizeof(soup));
-    soup.index_count = soup.vertex_count = g.index_count;
-    soup.indices = (unsigned int *)malloc(soup.index_count * sizeof(unsigned int));
-    soup.positions = (float *)malloc(soup.vertex_count * 3 * sizeof(float));
-    for (t = 0; t < soup.index_count; ++t) {
-        soup.indices[t] = (unsigned int)t;
-        memcpy(soup.positions + 3 * t, g.positions + 3 * (size_t)g.indices[t], 3 * sizeof(float));
-    }
+    CHECK(gen_soup(&soup, &g));
     gen_flip_random(&soup, 0.3, 5, NULL);
     memset(&o, 0, sizeof(o));
     o.topology = MESHFIX_TOPOLOGY_INDICES;
