@@ -1325,6 +1325,143 @@ MESHFIX__PRIVATE void meshfix__radix_sort(unsigned int *keys, unsigned int *valu
     }
 }
 
+/* A counting sort of (bucket, item) entries into buckets, in phases a
+   caller's parallel_for may run side by side, that leaves each bucket's
+   entries in the order one pass over the items would. The stage's
+   `entries` hands a chunk's over, item by item, to meshfix__sort_entry,
+   twice: entries cheap to find are found again, dear ones kept (`placing`
+   tells the passes apart). The buckets lie in partitions of 2^shift or
+   more, no more partitions than chunks, so a chunk's counts fit a row of
+   `at`:
+     1. per chunk of items: its entries counted by partition;
+     2. here: the counts become places, partition by partition and chunk
+        by chunk within each (item order);
+     3. per chunk: its entries handed over again, moved to those places;
+     4. per partition: its entries counted into its own buckets (no
+        bucket crosses a partition) and placed there (their items into
+        `sorted`), then the stage's `part`.
+   Below MESHFIX__PARALLEL_UNIT items it is one chunk and one partition. */
+typedef struct meshfix__bucket_sort meshfix__bucket_sort;
+struct meshfix__bucket_sort {
+    /* the stage's */
+    const meshfix_options *parallel; /* whose parallel_for runs the phases (NULL: here) */
+    void *context;                   /* for entries and part */
+    /* the entries of items [first, end), each through meshfix__sort_entry(s, next, ...) */
+    void (*entries)(meshfix__bucket_sort *s, size_t first, size_t end, unsigned int *next);
+    /* its work on buckets [first, end), once placed, their entries from `begin` on; NULL: none */
+    void (*part)(const meshfix__bucket_sort *s, size_t first, size_t end, unsigned int begin);
+    size_t items, buckets;
+    size_t shift;                      /* a partition's buckets: 2^shift at least */
+    unsigned int *entry_bucket, *entry_item; /* room for the entries, partition by partition */
+    unsigned int *end;                 /* per bucket: where it ends */
+    unsigned int *sorted;              /* the entries' items bucket by bucket */
+    /* the sort's own */
+    size_t chunks, parts;
+    int placing;                       /* 0: phase 1, counting; 1: phase 3 */
+    unsigned int at[MESHFIX__STAGE_CHUNKS][MESHFIX__STAGE_CHUNKS]; /* [chunk][partition]: count, then next place */
+    unsigned int part_start[MESHFIX__STAGE_CHUNKS + 1];
+};
+
+/* The least shift, `shift` or more, that cuts `buckets` (1 or more) into
+   `most` partitions of 2^shift at most: partition p is
+   [p << shift, (p + 1) << shift). */
+MESHFIX__PRIVATE size_t meshfix__partition_shift(size_t buckets, size_t most, size_t shift)
+{
+    while (((buckets - 1) >> shift) >= most)
+        ++shift;
+    return shift;
+}
+
+/* The bucket after partition p's last. */
+MESHFIX__PRIVATE size_t meshfix__partition_end(size_t p, size_t shift, size_t buckets)
+{
+    size_t end = (p + 1) << shift;
+    return end < buckets ? end : buckets;
+}
+
+/* An entry of `item` in `bucket`, from the stage's `entries`: counted in
+   phase 1, moved to its place in phase 3 (`next`: the chunk's count or
+   next place per partition). */
+MESHFIX__PRIVATE void meshfix__sort_entry(const meshfix__bucket_sort *s, unsigned int *next, unsigned int bucket,
+                                         unsigned int item)
+{
+    unsigned int at = next[bucket >> s->shift]++;
+    if (s->placing) {
+        s->entry_bucket[at] = bucket;
+        s->entry_item[at] = item;
+    }
+}
+
+/* Phases 1 and 3 for one chunk. */
+MESHFIX__PRIVATE void meshfix__sort_chunk(void *context, size_t chunk)
+{
+    meshfix__bucket_sort *s = (meshfix__bucket_sort *)context;
+    unsigned int next[MESHFIX__STAGE_CHUNKS] = {0};
+    if (s->placing)
+        MESHFIX_MEMCPY(next, s->at[chunk], sizeof(next));
+    s->entries(s, meshfix__chunk_start(s->items, chunk, s->chunks), meshfix__chunk_start(s->items, chunk + 1, s->chunks),
+               next);
+    /* counted in locals, copied once: neighbouring chunks' counts share cache lines */
+    if (!s->placing)
+        MESHFIX_MEMCPY(s->at[chunk], next, sizeof(next));
+}
+
+/* Phase 4 for one partition. */
+MESHFIX__PRIVATE void meshfix__sort_partition(void *context, size_t part)
+{
+    meshfix__bucket_sort *s = (meshfix__bucket_sort *)context;
+    size_t b, first = part << s->shift, after = meshfix__partition_end(part, s->shift, s->buckets);
+    unsigned int i, begin = s->part_start[part], last = s->part_start[part + 1], sum = begin;
+    MESHFIX_MEMSET(s->end + first, 0, (after - first) * sizeof(unsigned int));
+    for (i = begin; i < last; ++i)
+        s->end[s->entry_bucket[i]]++;
+    for (b = first; b < after; ++b) {
+        unsigned int n = s->end[b];
+        s->end[b] = sum;
+        sum += n;
+    }
+    for (i = begin; i < last; ++i)
+        s->sorted[s->end[s->entry_bucket[i]]++] = s->entry_item[i];
+    /* end[b] is now where bucket b ends */
+    if (s->part != NULL)
+        s->part(s, first, after, begin);
+}
+
+/* Phase 2: each partition's entries chunk by chunk, in item order.
+   Returns how many entries there are. */
+MESHFIX__PRIVATE unsigned int meshfix__sort_places(meshfix__bucket_sort *s)
+{
+    size_t c, p;
+    unsigned int sum = 0;
+    for (p = 0; p < s->parts; ++p) {
+        s->part_start[p] = sum;
+        for (c = 0; c < s->chunks; ++c) {
+            unsigned int n = s->at[c][p];
+            s->at[c][p] = sum;
+            sum += n;
+        }
+    }
+    s->part_start[s->parts] = sum;
+    return sum;
+}
+
+/* Runs the sort, the stage's fields set; returns how many entries there
+   are (where the last bucket ends). */
+MESHFIX__PRIVATE unsigned int meshfix__sort_buckets(meshfix__bucket_sort *s)
+{
+    unsigned int entries;
+    s->chunks = meshfix__stage_chunks(s->items);
+    s->shift = meshfix__partition_shift(s->buckets, s->chunks, s->shift);
+    s->parts = ((s->buckets - 1) >> s->shift) + 1;
+    s->placing = 0;
+    meshfix__run_tasks(s->parallel, meshfix__sort_chunk, s, s->chunks);
+    entries = meshfix__sort_places(s);
+    s->placing = 1;
+    meshfix__run_tasks(s->parallel, meshfix__sort_chunk, s, s->chunks);
+    meshfix__run_tasks(s->parallel, meshfix__sort_partition, s, s->parts);
+    return entries;
+}
+
 /* ===== >>weld ===== */
 
 /* Welding snaps each vertex to the lowest-index earlier representative
@@ -1570,62 +1707,44 @@ MESHFIX__PRIVATE size_t meshfix__weld_run(meshfix__welder *w, size_t vertex_coun
 
 /* The pipeline's join at tolerance 0 (remap[v]: the lowest vertex at v's
    position, bit for bit once -0 is +0; a NaN or infinite vertex joins
-   nothing), in phases a caller's parallel_for may run: each vertex's
-   bucket (the welder's hash, by chunks of vertices), the vertices moved
-   into partitions of the buckets (each partition's in vertex order), then
-   each partition sorted into its own buckets and their runs found alone.
+   nothing): the vertices counting-sorted into the welder's buckets by
+   position (meshfix__sort_buckets, in chunks a caller's parallel_for may
+   run), then each partition's buckets sorted and their runs found alone.
    Equal positions share a bucket, so no run crosses a partition, and a
    bucket of one vertex is a run without reading its position again (most
    buckets: the table is half empty). The remap is meshfix__weld_run's:
    a bucket's vertices sorted by (position, vertex) whatever sorted them. */
-#define MESHFIX__JOIN_BUCKETS 0 /* per chunk of vertices: home[v] = its bucket; counts per partition */
-#define MESHFIX__JOIN_SPLIT 1   /* per chunk: its vertices into their partitions (rep_next), buckets beside (rep_head) */
-#define MESHFIX__JOIN_RUNS 2    /* per partition: its buckets in `order`, sorted, their runs into remap */
-
 typedef struct meshfix__joiner {
     meshfix__welder *w;
     unsigned int *remap;
-    size_t vertices, chunks, parts, shift; /* bucket b lies in partition b >> shift */
-    int phase;
-    unsigned int at[MESHFIX__STAGE_CHUNKS][MESHFIX__STAGE_CHUNKS]; /* [chunk][partition]: count, then next place */
-    unsigned int part_start[MESHFIX__STAGE_CHUNKS + 1];
 } meshfix__joiner;
 
-MESHFIX__PRIVATE void meshfix__join_buckets(meshfix__joiner *j, size_t chunk)
+/* Vertex v's bucket; NONE for a NaN or infinite one, which joins nothing. */
+MESHFIX__PRIVATE unsigned int meshfix__join_home(meshfix__joiner *j, size_t v)
 {
-    meshfix__welder *w = j->w;
-    size_t v = meshfix__chunk_start(j->vertices, chunk, j->chunks), end = meshfix__chunk_start(j->vertices, chunk + 1, j->chunks);
-    unsigned int count[MESHFIX__STAGE_CHUNKS] = {0};
-    for (; v < end; ++v) {
-        double p[3];
-        int k;
-        if (!meshfix__read_point(w->positions, w->stride, w->position_size, v, p)) {
-            w->home[v] = MESHFIX__NONE;
-            j->remap[v] = (unsigned int)v;
-            continue;
-        }
-        for (k = 0; k < 3; ++k)
-            p[k] = p[k] == 0.0 ? 0.0 : p[k]; /* -0 joins +0 (meshfix__weld_load) */
-        w->home[v] = (unsigned int)meshfix__weld_hash(p, w->mask);
-        count[w->home[v] >> j->shift]++;
+    double p[3];
+    int k;
+    if (!meshfix__read_point(j->w->positions, j->w->stride, j->w->position_size, v, p)) {
+        j->remap[v] = (unsigned int)v;
+        return MESHFIX__NONE;
     }
-    /* counted here, copied once: neighbouring chunks' counts share cache lines */
-    MESHFIX_MEMCPY(j->at[chunk], count, sizeof(count));
+    for (k = 0; k < 3; ++k)
+        p[k] = p[k] == 0.0 ? 0.0 : p[k]; /* -0 joins +0 (meshfix__weld_load) */
+    return (unsigned int)meshfix__weld_hash(p, j->w->mask);
 }
 
-MESHFIX__PRIVATE void meshfix__join_split(meshfix__joiner *j, size_t chunk)
+/* The vertices of [first, end) into their buckets: hashed when counted,
+   kept in home[v] for when they are placed. */
+MESHFIX__PRIVATE void meshfix__join_entries(meshfix__bucket_sort *s, size_t first, size_t end, unsigned int *next)
 {
-    meshfix__welder *w = j->w;
-    size_t v = meshfix__chunk_start(j->vertices, chunk, j->chunks), end = meshfix__chunk_start(j->vertices, chunk + 1, j->chunks);
-    unsigned int next[MESHFIX__STAGE_CHUNKS];
-    MESHFIX_MEMCPY(next, j->at[chunk], sizeof(next));
-    for (; v < end; ++v) {
-        unsigned int b = w->home[v], at;
-        if (b == MESHFIX__NONE)
-            continue;
-        at = next[b >> j->shift]++;
-        w->rep_next[at] = (unsigned int)v;
-        w->rep_head[at] = b;
+    meshfix__joiner *j = (meshfix__joiner *)s->context;
+    unsigned int *home = j->w->home;
+    size_t v;
+    for (v = first; v < end; ++v) {
+        if (!s->placing)
+            home[v] = meshfix__join_home(j, v);
+        if (home[v] != MESHFIX__NONE)
+            meshfix__sort_entry(s, next, home[v], (unsigned int)v);
     }
 }
 
@@ -1651,36 +1770,14 @@ MESHFIX__PRIVATE void meshfix__join_bucket(const meshfix__welder *w, unsigned in
     }
 }
 
-MESHFIX__PRIVATE void meshfix__join_runs(meshfix__joiner *j, size_t part)
+/* The runs of buckets [first, end), sorted. */
+MESHFIX__PRIVATE void meshfix__join_runs(const meshfix__bucket_sort *s, size_t first, size_t end, unsigned int begin)
 {
-    meshfix__welder *w = j->w;
-    size_t b, first = part << j->shift, end = (part + 1) << j->shift, i;
-    unsigned int begin = j->part_start[part], last = j->part_start[part + 1], sum = begin;
-    MESHFIX_MEMSET(w->bucket_end + first, 0, (end - first) * sizeof(unsigned int));
-    for (i = begin; i < last; ++i)
-        w->bucket_end[w->rep_head[i]]++;
-    for (b = first; b < end; ++b) {
-        unsigned int n = w->bucket_end[b];
-        w->bucket_end[b] = sum;
-        sum += n;
-    }
-    for (i = begin; i < last; ++i)
-        w->order[w->bucket_end[w->rep_head[i]]++] = w->rep_next[i];
-    /* bucket_end[b] is now where bucket b ends */
-    for (b = first; b < end; begin = w->bucket_end[b++])
-        if (w->bucket_end[b] != begin)
-            meshfix__join_bucket(w, w->order + begin, w->bucket_end[b] - begin, j->remap);
-}
-
-MESHFIX__PRIVATE void meshfix__join_task(void *context, size_t index)
-{
-    meshfix__joiner *j = (meshfix__joiner *)context;
-    if (j->phase == MESHFIX__JOIN_BUCKETS)
-        meshfix__join_buckets(j, index);
-    else if (j->phase == MESHFIX__JOIN_SPLIT)
-        meshfix__join_split(j, index);
-    else
-        meshfix__join_runs(j, index);
+    const meshfix__joiner *j = (const meshfix__joiner *)s->context;
+    size_t b;
+    for (b = first; b < end; begin = s->end[b++])
+        if (s->end[b] != begin)
+            meshfix__join_bucket(j->w, s->sorted + begin, s->end[b] - begin, j->remap);
 }
 
 /* w carved and set up for tolerance 0 with skip_non_finite; `parallel`:
@@ -1689,34 +1786,21 @@ MESHFIX__PRIVATE void meshfix__join_exact(meshfix__welder *w, size_t vertices, u
                                          const meshfix_options *parallel)
 {
     meshfix__joiner j;
-    size_t c, k, buckets = w->mask + 1;
-    unsigned int sum = 0;
+    meshfix__bucket_sort s;
     j.w = w;
     j.remap = remap;
-    j.vertices = vertices;
-    j.chunks = meshfix__stage_chunks(vertices);
-    for (j.shift = 0; (buckets >> j.shift) > j.chunks; ++j.shift) {
-    }
-    j.parts = buckets >> j.shift;
-    for (c = 0; c < j.chunks; ++c)
-        for (k = 0; k < j.parts; ++k)
-            j.at[c][k] = 0;
-    j.phase = MESHFIX__JOIN_BUCKETS;
-    meshfix__run_tasks(parallel, meshfix__join_task, &j, j.chunks);
-    /* each partition's vertices chunk by chunk: in vertex order */
-    for (k = 0; k < j.parts; ++k) {
-        j.part_start[k] = sum;
-        for (c = 0; c < j.chunks; ++c) {
-            unsigned int n = j.at[c][k];
-            j.at[c][k] = sum;
-            sum += n;
-        }
-    }
-    j.part_start[j.parts] = sum;
-    j.phase = MESHFIX__JOIN_SPLIT;
-    meshfix__run_tasks(parallel, meshfix__join_task, &j, j.chunks);
-    j.phase = MESHFIX__JOIN_RUNS;
-    meshfix__run_tasks(parallel, meshfix__join_task, &j, j.parts);
+    s.parallel = parallel;
+    s.context = &j;
+    s.entries = meshfix__join_entries;
+    s.part = meshfix__join_runs;
+    s.items = vertices;
+    s.buckets = w->mask + 1;
+    s.shift = 0;
+    s.entry_bucket = w->rep_head;
+    s.entry_item = w->rep_next;
+    s.end = w->bucket_end;
+    s.sorted = w->order;
+    meshfix__sort_buckets(&s);
 }
 
 /* ===== >>input ===== */
