@@ -2014,87 +2014,67 @@ MESHFIX__PRIVATE void meshfix__link_bucket(meshfix__mesh *m, unsigned int *ids, 
    vertex, each bucket in half-edge order, then links each bucket (sorted
    by its higher vertex and cut into runs) and ends the degenerate
    triangles' half-edges. On the caller's threads, where the join left its
-   room (positions joined the corners: m->input_room), in phases: each
-   chunk of triangles counts its half-edges by the partition of their
-   lower vertex (ranges of vertices), then moves them there, in `work`,
-   their lower vertex beside them in `mate` (its room until the edges are
-   linked), each partition's in half-edge order; each partition counts
-   and sorts its own into its buckets, in the input's room. Else one
-   counting sort of them all into `work`, here (a pass less: on one
-   thread the phases cost the 1M cut sphere 12.4 -> 18.8 ms). Either way
-   the same buckets, and then the partitions link theirs and the chunks
+   room (positions joined the corners: m->input_room), the buckets are
+   meshfix__sort_buckets' in chunks, in the input's room, the half-edges
+   on their way in `work`, their lower vertex beside them in `mate` (its
+   room until the edges are linked). Else one counting
+   sort of them all into `work`, here (a pass less: on one thread the
+   phases cost the 1M cut sphere 12.4 -> 18.8 ms). Either way the same
+   buckets, and then the partitions of vertices link theirs and the chunks
    end their degenerate triangles. */
-#define MESHFIX__EDGES_COUNT 0
-#define MESHFIX__EDGES_SPLIT 1
-#define MESHFIX__EDGES_SORT 2
-#define MESHFIX__EDGES_LINK 3
-
 typedef struct meshfix__edge_build {
     meshfix__mesh *m;
     unsigned int *ids;           /* the buckets */
     size_t chunks, parts, shift; /* vertex v lies in partition v >> shift */
-    int phase;
-    unsigned int at[MESHFIX__STAGE_CHUNKS][MESHFIX__STAGE_CHUNKS]; /* [chunk][partition]: count, then next place */
-    unsigned int part_start[MESHFIX__STAGE_CHUNKS + 1];            /* where a partition's buckets start */
-    meshfix__edge_counts counts[MESHFIX__STAGE_CHUNKS];             /* per partition */
+    meshfix__edge_counts counts[MESHFIX__STAGE_CHUNKS]; /* per partition */
 } meshfix__edge_build;
 
-MESHFIX__PRIVATE void meshfix__edges_split(meshfix__edge_build *e, size_t chunk, int place)
+/* The half-edges of triangles [first, end), each into the bucket of its
+   lower vertex (a degenerate triangle's into none), found again when
+   placed: cheaper than keeping them. */
+MESHFIX__PRIVATE void meshfix__edges_entries(meshfix__bucket_sort *s, size_t first, size_t end, unsigned int *next)
 {
-    meshfix__mesh *m = e->m;
-    size_t t = meshfix__chunk_start(m->triangle_count, chunk, e->chunks);
-    size_t end = meshfix__chunk_start(m->triangle_count, chunk + 1, e->chunks);
-    unsigned int at[MESHFIX__STAGE_CHUNKS], k;
-    /* counted here, copied once: neighbouring chunks' counts share cache lines */
-    MESHFIX_MEMCPY(at, e->at[chunk], sizeof(at));
-    for (; t < end; ++t) {
+    const meshfix__mesh *m = (const meshfix__mesh *)s->context;
+    size_t t;
+    unsigned int k;
+    for (t = first; t < end; ++t) {
         const unsigned int *v = m->indices + 3 * t;
         if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
             continue;
         for (k = 0; k < 3; ++k) {
-            unsigned int a = v[k], b = v[k == 2 ? 0 : k + 1], low = a < b ? a : b, to;
-            if (!place) {
-                at[low >> e->shift]++;
-                continue;
-            }
-            to = at[low >> e->shift]++;
-            m->work[to] = (unsigned int)(3 * t) + k;
-            m->mate[to] = low;
+            unsigned int a = v[k], b = v[k == 2 ? 0 : k + 1];
+            meshfix__sort_entry(s, next, a < b ? a : b, (unsigned int)(3 * t) + k);
         }
     }
-    if (!place)
-        MESHFIX_MEMCPY(e->at[chunk], at, sizeof(at));
 }
 
-/* A partition's half-edges into its buckets: counted by lower vertex,
-   then each to its place, in order (stable). */
-MESHFIX__PRIVATE void meshfix__edges_sort(meshfix__edge_build *e, size_t part)
+/* The half-edges into their buckets in the input's room, on the caller's
+   threads. */
+MESHFIX__PRIVATE void meshfix__edges_by_partition(meshfix__edge_build *e)
 {
     meshfix__mesh *m = e->m;
-    unsigned int *end = m->vertex_work, *low = m->mate, i, sum = e->part_start[part];
-    unsigned int last = e->part_start[part + 1];
-    size_t v, first = part << e->shift, after = (part + 1) << e->shift;
-    after = after < m->vertex_range ? after : m->vertex_range;
-    MESHFIX_MEMSET(end + first, 0, (after - first) * sizeof(unsigned int));
-    for (i = sum; i < last; ++i)
-        end[low[i]]++;
-    for (v = first; v < after; ++v) {
-        unsigned int n = end[v];
-        end[v] = sum;
-        sum += n;
-    }
-    for (i = e->part_start[part]; i < last; ++i)
-        e->ids[end[low[i]]++] = m->work[i];
-    /* end[v] is now where bucket v ends */
+    meshfix__bucket_sort s;
+    s.parallel = m->options;
+    s.context = m;
+    s.entries = meshfix__edges_entries;
+    s.part = NULL;
+    s.items = m->triangle_count;
+    s.buckets = m->vertex_range;
+    s.shift = 0;
+    s.entry_bucket = m->mate;
+    s.entry_item = m->work;
+    s.end = m->vertex_work;
+    s.sorted = e->ids = m->input_room;
+    meshfix__sort_buckets(&s);
 }
 
-/* All the half-edges into their buckets in `work`, here; where each
-   partition's buckets start. */
+/* All the half-edges into their buckets in `work`, here. */
 MESHFIX__PRIVATE void meshfix__edges_sort_all(meshfix__edge_build *e)
 {
     meshfix__mesh *m = e->m;
     unsigned int *end = m->vertex_work, sum = 0, h;
-    size_t t, v, part;
+    size_t t, v;
+    e->ids = m->work;
     MESHFIX_MEMSET(end, 0, m->vertex_range * sizeof(unsigned int));
     for (t = 0; t < m->triangle_count; ++t) {
         const unsigned int *tri = m->indices + 3 * t;
@@ -2114,21 +2094,24 @@ MESHFIX__PRIVATE void meshfix__edges_sort_all(meshfix__edge_build *e)
             for (h = (unsigned int)(3 * t); h < 3 * t + 3; ++h)
                 e->ids[end[meshfix__edge_low(m->indices, h)]++] = h;
     /* end[v] is now where bucket v ends */
-    for (part = 0; part < e->parts; ++part)
-        e->part_start[part] = part == 0 ? 0 : end[(part << e->shift) - 1];
 }
 
-MESHFIX__PRIVATE void meshfix__edges_link(meshfix__edge_build *e, size_t task)
+/* Task `task`: the links of partition `task` of vertices (its buckets
+   start where the one before it ends), and the degenerate triangles of
+   chunk `task`. */
+MESHFIX__PRIVATE void meshfix__edges_link(void *context, size_t task)
 {
+    meshfix__edge_build *e = (meshfix__edge_build *)context;
     meshfix__mesh *m = e->m;
     size_t t, end, v, after;
     if (task < e->parts) {
-        unsigned int begin = e->part_start[task];
-        after = (task + 1) << e->shift;
-        after = after < m->vertex_range ? after : m->vertex_range;
+        unsigned int *bucket_end = m->vertex_work, begin;
+        v = task << e->shift;
+        begin = v == 0 ? 0 : bucket_end[v - 1];
+        after = meshfix__partition_end(task, e->shift, m->vertex_range);
         MESHFIX_MEMSET(&e->counts[task], 0, sizeof(e->counts[task]));
-        for (v = task << e->shift; v < after; begin = m->vertex_work[v++])
-            meshfix__link_bucket(m, e->ids + begin, m->vertex_work[v] - begin, &e->counts[task]);
+        for (; v < after; begin = bucket_end[v++])
+            meshfix__link_bucket(m, e->ids + begin, bucket_end[v] - begin, &e->counts[task]);
     }
     if (task >= e->chunks)
         return;
@@ -2136,44 +2119,6 @@ MESHFIX__PRIVATE void meshfix__edges_link(meshfix__edge_build *e, size_t task)
     for (t = meshfix__chunk_start(m->triangle_count, task, e->chunks); t < end; ++t)
         if (m->tri_bits[t] & MESHFIX__TRI_DEGENERATE)
             m->mate[3 * t] = m->mate[3 * t + 1] = m->mate[3 * t + 2] = MESHFIX__NONE;
-}
-
-MESHFIX__PRIVATE void meshfix__edges_task(void *context, size_t index)
-{
-    meshfix__edge_build *e = (meshfix__edge_build *)context;
-    if (e->phase == MESHFIX__EDGES_COUNT || e->phase == MESHFIX__EDGES_SPLIT)
-        meshfix__edges_split(e, index, e->phase == MESHFIX__EDGES_SPLIT);
-    else if (e->phase == MESHFIX__EDGES_SORT)
-        meshfix__edges_sort(e, index);
-    else
-        meshfix__edges_link(e, index);
-}
-
-/* The partitions: each chunk's half-edges counted and moved to theirs,
-   then each sorted into its buckets. */
-MESHFIX__PRIVATE void meshfix__edges_by_partition(meshfix__edge_build *e)
-{
-    size_t c, k;
-    unsigned int sum = 0;
-    for (c = 0; c < e->chunks; ++c)
-        for (k = 0; k < e->parts; ++k)
-            e->at[c][k] = 0;
-    e->phase = MESHFIX__EDGES_COUNT;
-    meshfix__run_tasks(e->m->options, meshfix__edges_task, e, e->chunks);
-    /* each partition's half-edges chunk by chunk: in half-edge order */
-    for (k = 0; k < e->parts; ++k) {
-        e->part_start[k] = sum;
-        for (c = 0; c < e->chunks; ++c) {
-            unsigned int n = e->at[c][k];
-            e->at[c][k] = sum;
-            sum += n;
-        }
-    }
-    e->part_start[e->parts] = sum;
-    e->phase = MESHFIX__EDGES_SPLIT;
-    meshfix__run_tasks(e->m->options, meshfix__edges_task, e, e->chunks);
-    e->phase = MESHFIX__EDGES_SORT;
-    meshfix__run_tasks(e->m->options, meshfix__edges_task, e, e->parts);
 }
 
 MESHFIX__PRIVATE void meshfix__build_edges(meshfix__mesh *m, meshfix__edge_counts *counts)
@@ -2185,18 +2130,13 @@ MESHFIX__PRIVATE void meshfix__build_edges(meshfix__mesh *m, meshfix__edge_count
     MESHFIX_MEMSET(counts, 0, sizeof(*counts));
     if (m->vertex_range == 0)
         return;
-    for (e.shift = 0; ((m->vertex_range - 1) >> e.shift) >= e.chunks; ++e.shift) {
-    }
+    e.shift = meshfix__partition_shift(m->vertex_range, e.chunks, 0);
     e.parts = ((m->vertex_range - 1) >> e.shift) + 1;
-    if (m->input_room != NULL && e.chunks > 1 && meshfix__threads(m->options)) {
-        e.ids = m->input_room;
+    if (m->input_room != NULL && e.chunks > 1 && meshfix__threads(m->options))
         meshfix__edges_by_partition(&e);
-    } else {
-        e.ids = m->work;
+    else
         meshfix__edges_sort_all(&e);
-    }
-    e.phase = MESHFIX__EDGES_LINK;
-    meshfix__run_tasks(m->options, meshfix__edges_task, &e, e.parts > e.chunks ? e.parts : e.chunks);
+    meshfix__run_tasks(m->options, meshfix__edges_link, &e, e.parts > e.chunks ? e.parts : e.chunks);
     for (k = 0; k < e.parts; ++k) {
         counts->edges += e.counts[k].edges;
         counts->boundary += e.counts[k].boundary;
