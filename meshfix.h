@@ -1339,7 +1339,8 @@ MESHFIX__PRIVATE void meshfix__radix_sort(unsigned int *keys, unsigned int *valu
      3. per chunk: its entries handed over again, moved to those places;
      4. per partition: its entries counted into its own buckets (no
         bucket crosses a partition) and placed there (their items into
-        `sorted`), then the stage's `part`.
+        `sorted`, or by the stage's `place`), then the stage's `part`.
+   The join by position, the edge map and the coherence grid run on it.
    Below MESHFIX__PARALLEL_UNIT items it is one chunk and one partition. */
 typedef struct meshfix__bucket_sort meshfix__bucket_sort;
 struct meshfix__bucket_sort {
@@ -1348,13 +1349,15 @@ struct meshfix__bucket_sort {
     void *context;                   /* for entries and part */
     /* the entries of items [first, end), each through meshfix__sort_entry(s, next, ...) */
     void (*entries)(meshfix__bucket_sort *s, size_t first, size_t end, unsigned int *next);
+    /* moves entries [begin, last) of a partition, each to end[its bucket]++; NULL: their items to `sorted` */
+    void (*place)(const meshfix__bucket_sort *s, unsigned int begin, unsigned int last);
     /* its work on buckets [first, end), once placed, their entries from `begin` on; NULL: none */
     void (*part)(const meshfix__bucket_sort *s, size_t first, size_t end, unsigned int begin);
     size_t items, buckets;
     size_t shift;                      /* a partition's buckets: 2^shift at least */
     unsigned int *entry_bucket, *entry_item; /* room for the entries, partition by partition */
     unsigned int *end;                 /* per bucket: where it ends */
-    unsigned int *sorted;              /* the entries' items bucket by bucket */
+    unsigned int *sorted;              /* the entries' items bucket by bucket (with no `place`) */
     /* the sort's own */
     size_t chunks, parts;
     int placing;                       /* 0: phase 1, counting; 1: phase 3 */
@@ -1420,8 +1423,11 @@ MESHFIX__PRIVATE void meshfix__sort_partition(void *context, size_t part)
         s->end[b] = sum;
         sum += n;
     }
-    for (i = begin; i < last; ++i)
-        s->sorted[s->end[s->entry_bucket[i]]++] = s->entry_item[i];
+    if (s->place != NULL)
+        s->place(s, begin, last);
+    else
+        for (i = begin; i < last; ++i)
+            s->sorted[s->end[s->entry_bucket[i]]++] = s->entry_item[i];
     /* end[b] is now where bucket b ends */
     if (s->part != NULL)
         s->part(s, first, after, begin);
@@ -1792,6 +1798,7 @@ MESHFIX__PRIVATE void meshfix__join_exact(meshfix__welder *w, size_t vertices, u
     s.parallel = parallel;
     s.context = &j;
     s.entries = meshfix__join_entries;
+    s.place = NULL;
     s.part = meshfix__join_runs;
     s.items = vertices;
     s.buckets = w->mask + 1;
@@ -2057,6 +2064,7 @@ MESHFIX__PRIVATE void meshfix__edges_by_partition(meshfix__edge_build *e)
     s.parallel = m->options;
     s.context = m;
     s.entries = meshfix__edges_entries;
+    s.place = NULL;
     s.part = NULL;
     s.items = m->triangle_count;
     s.buckets = m->vertex_range;
@@ -6102,132 +6110,83 @@ MESHFIX__PRIVATE size_t meshfix__grid_buckets(size_t segments)
 }
 
 /* The grid over chunks of segments (from MESHFIX__PARALLEL_UNIT
-   segments on), its buckets in partitions as the welder's join has
-   them: each chunk finds its segments' buckets and counts them per
-   partition, each chunk moves its entries into their partitions (in
-   segment order within each), and each partition sorts its own into
-   its buckets. A bucket ends with the entries one pass gives it, in the
-   same order. `entries` is scratch for 9 unsigned ints per segment. */
-#define MESHFIX__GRID_BUCKETS 0 /* per chunk of segments: their buckets, counts per partition */
-#define MESHFIX__GRID_SPLIT 1   /* per chunk: its entries into their partitions */
-#define MESHFIX__GRID_PLACE 2   /* per partition: its buckets' starts and items */
-
+   segments on), a meshfix__sort_buckets whose partitions cover whole
+   bytes of `occupied`: a bucket ends with the entries one pass gives it,
+   in the same order. `entries` is scratch for 9 unsigned ints per
+   segment. */
 typedef struct meshfix__grid_task {
     meshfix__grid *grid;
     const meshfix__segment *segments;
-    unsigned int n;
     double beyond, reach;
-    unsigned int *bucket_of;                  /* 3 per segment: the buckets it enters, NONE after the last */
-    unsigned int *entry_bucket, *entry_item;  /* 3 per segment at most: partition by partition */
-    size_t chunks, parts, shift;              /* bucket b lies in partition b >> shift */
-    int phase;
-    unsigned int at[MESHFIX__STAGE_CHUNKS][MESHFIX__STAGE_CHUNKS]; /* [chunk][partition]: count, then next place */
-    unsigned int part_start[MESHFIX__STAGE_CHUNKS + 1];
+    unsigned int *bucket_of; /* 3 per segment: the buckets it enters, NONE after the last */
 } meshfix__grid_task;
 
-MESHFIX__PRIVATE void meshfix__grid_buckets_of(meshfix__grid_task *k, size_t chunk)
+/* The segments of [first, end) into the buckets of meshfix__segment_buckets:
+   found when counted, kept in bucket_of for when they are placed. */
+MESHFIX__PRIVATE void meshfix__grid_entries(meshfix__bucket_sort *s, size_t first, size_t end, unsigned int *next)
 {
-    size_t i = meshfix__chunk_start(k->n, chunk, k->chunks), end = meshfix__chunk_start(k->n, chunk + 1, k->chunks);
-    unsigned int count[MESHFIX__STAGE_CHUNKS] = {0};
-    size_t bucket[3], j, n;
-    for (; i < end; ++i) {
-        n = (size_t)meshfix__segment_buckets(k->grid, &k->segments[i], k->beyond, k->reach, bucket);
-        for (j = 0; j < 3; ++j) {
-            k->bucket_of[3 * i + j] = j < n ? (unsigned int)bucket[j] : MESHFIX__NONE;
-            if (j < n)
-                count[bucket[j] >> k->shift]++;
+    const meshfix__grid_task *k = (const meshfix__grid_task *)s->context;
+    size_t i, j, n, bucket[3];
+    for (i = first; i < end; ++i) {
+        unsigned int *of = k->bucket_of + 3 * i;
+        if (!s->placing) {
+            n = (size_t)meshfix__segment_buckets(k->grid, &k->segments[i], k->beyond, k->reach, bucket);
+            for (j = 0; j < 3; ++j)
+                of[j] = j < n ? (unsigned int)bucket[j] : MESHFIX__NONE;
         }
+        for (j = 0; j < 3 && of[j] != MESHFIX__NONE; ++j)
+            meshfix__sort_entry(s, next, of[j], (unsigned int)i);
     }
-    MESHFIX_MEMCPY(k->at[chunk], count, sizeof(count));
 }
 
-MESHFIX__PRIVATE void meshfix__grid_split(meshfix__grid_task *k, size_t chunk)
+/* A partition's entries as the grid's items, in their buckets, taken in
+   segment order: the segments are read in the order they lie (sorting
+   their ids first and reading them in bucket order cost the grid of 400k
+   segments some 8%). */
+MESHFIX__PRIVATE void meshfix__grid_place(const meshfix__bucket_sort *s, unsigned int begin, unsigned int last)
 {
-    size_t i = meshfix__chunk_start(k->n, chunk, k->chunks), end = meshfix__chunk_start(k->n, chunk + 1, k->chunks);
-    unsigned int next[MESHFIX__STAGE_CHUNKS];
-    size_t j;
-    MESHFIX_MEMCPY(next, k->at[chunk], sizeof(next));
-    for (; i < end; ++i)
-        for (j = 0; j < 3 && k->bucket_of[3 * i + j] != MESHFIX__NONE; ++j) {
-            unsigned int b = k->bucket_of[3 * i + j], at = next[b >> k->shift]++;
-            k->entry_bucket[at] = b;
-            k->entry_item[at] = (unsigned int)i;
-        }
-}
-
-MESHFIX__PRIVATE void meshfix__grid_place(meshfix__grid_task *k, size_t part)
-{
-    meshfix__grid *grid = k->grid;
-    size_t b, first = part << k->shift, end = (part + 1) << k->shift, i;
-    unsigned int begin = k->part_start[part], last = k->part_start[part + 1], sum = begin;
-    /* first the counts, then where each bucket starts: start[b] ends as
-       where bucket b ends, as after one pass */
+    const meshfix__grid_task *k = (const meshfix__grid_task *)s->context;
+    unsigned int i;
     for (i = begin; i < last; ++i)
-        grid->start[k->entry_bucket[i]]++;
-    for (b = first; b < end; ++b) {
-        unsigned int n = grid->start[b];
-        if (n != 0)
-            grid->occupied[b >> 3] = (unsigned char)(grid->occupied[b >> 3] | (1u << (b & 7)));
-        grid->start[b] = sum;
-        sum += n;
-    }
-    for (i = begin; i < last; ++i)
-        meshfix__cell_item_of(k->segments, k->entry_item[i], &grid->items[grid->start[k->entry_bucket[i]]++]);
+        meshfix__cell_item_of(k->segments, s->entry_item[i], &k->grid->items[s->end[s->entry_bucket[i]]++]);
 }
 
-MESHFIX__PRIVATE void meshfix__grid_task_run(void *context, size_t index)
+/* Which of buckets [first, end) are occupied, once placed. */
+MESHFIX__PRIVATE void meshfix__grid_occupied(const meshfix__bucket_sort *s, size_t first, size_t end, unsigned int begin)
 {
-    meshfix__grid_task *k = (meshfix__grid_task *)context;
-    if (k->phase == MESHFIX__GRID_BUCKETS)
-        meshfix__grid_buckets_of(k, index);
-    else if (k->phase == MESHFIX__GRID_SPLIT)
-        meshfix__grid_split(k, index);
-    else
-        meshfix__grid_place(k, index);
+    unsigned char *occupied = ((const meshfix__grid_task *)s->context)->grid->occupied;
+    size_t b;
+    for (b = first; b < end; begin = s->end[b++])
+        if (s->end[b] != begin)
+            occupied[b >> 3] = (unsigned char)(occupied[b >> 3] | (1u << (b & 7)));
 }
 
 /* The grid's buckets and items over chunks (grid->start and occupied
-   zeroed, grid->cell and mask set). Returns 0 when out of memory. */
-MESHFIX__PRIVATE int meshfix__index_in_chunks(meshfix__geometry *g, meshfix__grid *grid, const meshfix__segment *segments,
-                                             unsigned int n, double reach, double beyond, unsigned int *entries)
+   zeroed, grid->cell, mask and items set). */
+MESHFIX__PRIVATE void meshfix__index_in_chunks(const meshfix_options *o, meshfix__grid *grid, const meshfix__segment *segments,
+                                              unsigned int n, double reach, double beyond, unsigned int *entries)
 {
     meshfix__grid_task k;
-    size_t c, p, buckets = grid->mask + 1;
-    unsigned int sum = 0;
+    meshfix__bucket_sort s;
+    size_t buckets = grid->mask + 1;
     k.grid = grid;
     k.segments = segments;
-    k.n = n;
     k.beyond = beyond;
     k.reach = reach;
     k.bucket_of = entries;
-    k.entry_bucket = entries + 3 * (size_t)n;
-    k.entry_item = entries + 6 * (size_t)n;
-    k.chunks = meshfix__stage_chunks(n);
-    /* a partition covers whole bytes of `occupied` */
-    for (k.shift = 3; (buckets >> k.shift) > k.chunks; ++k.shift) {
-    }
-    k.parts = buckets >> k.shift;
-    k.phase = MESHFIX__GRID_BUCKETS;
-    meshfix__run_tasks(g->o, meshfix__grid_task_run, &k, k.chunks);
-    /* each partition's entries chunk by chunk: in segment order */
-    for (p = 0; p < k.parts; ++p) {
-        k.part_start[p] = sum;
-        for (c = 0; c < k.chunks; ++c) {
-            unsigned int count = k.at[c][p];
-            k.at[c][p] = sum;
-            sum += count;
-        }
-    }
-    k.part_start[k.parts] = sum;
-    grid->start[buckets] = sum;
-    grid->items = (meshfix__cell_item *)meshfix__array(&g->arena, g->arena.plan.grid_items, sum);
-    if (grid->items == NULL)
-        return 0;
-    k.phase = MESHFIX__GRID_SPLIT;
-    meshfix__run_tasks(g->o, meshfix__grid_task_run, &k, k.chunks);
-    k.phase = MESHFIX__GRID_PLACE;
-    meshfix__run_tasks(g->o, meshfix__grid_task_run, &k, k.parts);
-    return 1;
+    s.parallel = o;
+    s.context = &k;
+    s.entries = meshfix__grid_entries;
+    s.place = meshfix__grid_place;
+    s.part = meshfix__grid_occupied;
+    s.items = n;
+    s.buckets = buckets;
+    s.shift = 3; /* a partition covers whole bytes of `occupied` */
+    s.entry_bucket = entries + 3 * (size_t)n;
+    s.entry_item = entries + 6 * (size_t)n;
+    s.end = grid->start;
+    s.sorted = NULL;
+    grid->start[buckets] = meshfix__sort_buckets(&s);
 }
 
 /* `entries`: scratch for meshfix__index_in_chunks (NULL: one pass here). */
@@ -6246,25 +6205,24 @@ MESHFIX__PRIVATE int meshfix__index_segments(meshfix__geometry *g, const meshfix
     buckets = meshfix__grid_buckets(n);
     grid->mask = buckets - 1;
     grid->start = (unsigned int *)meshfix__array(&g->arena, g->arena.plan.grid_start, buckets + 1);
-    if (grid->start == NULL)
-        return 0;
     grid->occupied = (unsigned char *)meshfix__array(&g->arena, g->arena.plan.grid_occupied, buckets / 8);
-    if (grid->occupied == NULL)
+    /* three entries a segment at most */
+    grid->items = (meshfix__cell_item *)meshfix__array(&g->arena, g->arena.plan.grid_items, 3 * (size_t)n);
+    if (grid->start == NULL || grid->occupied == NULL || grid->items == NULL)
         return 0;
     MESHFIX_MEMSET(grid->start, 0, (buckets + 1) * sizeof(unsigned int));
     MESHFIX_MEMSET(grid->occupied, 0, buckets / 8);
     /* buckets below NONE: each fits an entry */
-    if (entries != NULL && meshfix__stage_chunks(n) > 1 && grid->mask < MESHFIX__NONE)
-        return meshfix__index_in_chunks(g, grid, segments, n, reach, beyond, entries);
+    if (entries != NULL && meshfix__stage_chunks(n) > 1 && grid->mask < MESHFIX__NONE) {
+        meshfix__index_in_chunks(g->o, grid, segments, n, reach, beyond, entries);
+        return 1;
+    }
     meshfix__grid_pass(grid, segments, n, beyond, reach, 0);
     for (k = 0; k < buckets; ++k) {
         if (grid->start[k + 1] != 0)
             grid->occupied[k >> 3] = (unsigned char)(grid->occupied[k >> 3] | (1u << (k & 7)));
         grid->start[k + 1] += grid->start[k];
     }
-    grid->items = (meshfix__cell_item *)meshfix__array(&g->arena, g->arena.plan.grid_items, grid->start[buckets]);
-    if (grid->items == NULL)
-        return 0;
     meshfix__grid_pass(grid, segments, n, beyond, reach, 1); /* start[b] now ends bucket b */
     return 1;
 }
