@@ -1382,6 +1382,32 @@ MESHFIX__PRIVATE size_t meshfix__partition_end(size_t p, size_t shift, size_t bu
     return end < buckets ? end : buckets;
 }
 
+/* A sort of the entries of `items` items into `buckets` buckets, handed
+   over by `entries` with `context`, its phases run on parallel's tasks;
+   no `place` or `part` and partitions of any size until the stage says. */
+MESHFIX__PRIVATE void meshfix__sort_setup(meshfix__bucket_sort *s, const meshfix_options *parallel, void *context,
+                                         void (*entries)(meshfix__bucket_sort *, size_t, size_t, unsigned int *),
+                                         size_t items, size_t buckets)
+{
+    MESHFIX_MEMSET(s, 0, sizeof(*s));
+    s->parallel = parallel;
+    s->context = context;
+    s->entries = entries;
+    s->items = items;
+    s->buckets = buckets;
+}
+
+/* The stage's arrays: room for the entries (a bucket and an item each),
+   the bucket ends, and the items bucket by bucket (NULL with `place`). */
+MESHFIX__PRIVATE void meshfix__sort_arrays(meshfix__bucket_sort *s, unsigned int *entry_bucket, unsigned int *entry_item,
+                                          unsigned int *end, unsigned int *sorted)
+{
+    s->entry_bucket = entry_bucket;
+    s->entry_item = entry_item;
+    s->end = end;
+    s->sorted = sorted;
+}
+
 /* An entry of `item` in `bucket`, from the stage's `entries`: counted in
    phase 1, moved to its place in phase 3 (`next`: the chunk's count or
    next place per partition). */
@@ -1795,18 +1821,9 @@ MESHFIX__PRIVATE void meshfix__join_exact(meshfix__welder *w, size_t vertices, u
     meshfix__bucket_sort s;
     j.w = w;
     j.remap = remap;
-    s.parallel = parallel;
-    s.context = &j;
-    s.entries = meshfix__join_entries;
-    s.place = NULL;
+    meshfix__sort_setup(&s, parallel, &j, meshfix__join_entries, vertices, w->mask + 1);
+    meshfix__sort_arrays(&s, w->rep_head, w->rep_next, w->bucket_end, w->order);
     s.part = meshfix__join_runs;
-    s.items = vertices;
-    s.buckets = w->mask + 1;
-    s.shift = 0;
-    s.entry_bucket = w->rep_head;
-    s.entry_item = w->rep_next;
-    s.end = w->bucket_end;
-    s.sorted = w->order;
     meshfix__sort_buckets(&s);
 }
 
@@ -2061,18 +2078,9 @@ MESHFIX__PRIVATE void meshfix__edges_by_partition(meshfix__edge_build *e)
 {
     meshfix__mesh *m = e->m;
     meshfix__bucket_sort s;
-    s.parallel = m->options;
-    s.context = m;
-    s.entries = meshfix__edges_entries;
-    s.place = NULL;
-    s.part = NULL;
-    s.items = m->triangle_count;
-    s.buckets = m->vertex_range;
-    s.shift = 0;
-    s.entry_bucket = m->mate;
-    s.entry_item = m->work;
-    s.end = m->vertex_work;
-    s.sorted = e->ids = m->input_room;
+    e->ids = m->input_room;
+    meshfix__sort_setup(&s, m->options, m, meshfix__edges_entries, m->triangle_count, m->vertex_range);
+    meshfix__sort_arrays(&s, m->mate, m->work, m->vertex_work, e->ids);
     meshfix__sort_buckets(&s);
 }
 
@@ -6174,18 +6182,11 @@ MESHFIX__PRIVATE void meshfix__index_in_chunks(const meshfix_options *o, meshfix
     k.beyond = beyond;
     k.reach = reach;
     k.bucket_of = entries;
-    s.parallel = o;
-    s.context = &k;
-    s.entries = meshfix__grid_entries;
+    meshfix__sort_setup(&s, o, &k, meshfix__grid_entries, n, buckets);
+    meshfix__sort_arrays(&s, entries + 3 * (size_t)n, entries + 6 * (size_t)n, grid->start, NULL);
     s.place = meshfix__grid_place;
     s.part = meshfix__grid_occupied;
-    s.items = n;
-    s.buckets = buckets;
     s.shift = 3; /* a partition covers whole bytes of `occupied` */
-    s.entry_bucket = entries + 3 * (size_t)n;
-    s.entry_item = entries + 6 * (size_t)n;
-    s.end = grid->start;
-    s.sorted = NULL;
     grid->start[buckets] = meshfix__sort_buckets(&s);
 }
 
