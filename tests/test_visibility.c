@@ -730,7 +730,7 @@ static void test_parallel_for_identical(void)
     outputs.patch_confidence = conf2;
     CHECK_EQ(meshfix_orient(b, c.mesh.indices, c.mesh.index_count, c.mesh.positions, c.mesh.vertex_count, 12, &o, &r2, &outputs),
              MESHFIX_OK);
-    CHECK(calls == 1);
+    CHECK(calls >= 1); /* the visibility stage's; below MESHFIX__PARALLEL_UNIT, the stages in chunks call it too */
     CHECK(memcmp(a, b, c.mesh.index_count * sizeof(unsigned int)) == 0);
     CHECK(memcmp(&r1, &r2, sizeof(r1)) == 0);
     CHECK(memcmp(conf1, conf2, r1.mesh.patches * sizeof(float)) == 0);
