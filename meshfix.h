@@ -232,22 +232,30 @@ typedef enum meshfix_result {
 
 /* Which way each consistently wound patch ends up facing, from one list:
    the enum, the name (meshfix_policy_string, the tool's --policy), a line
-   for help texts and menus, and what the policy needs (meshfix_policy_info:
-   positions, the caller's normals, the SDF callback, the up axis; whether
-   it casts rays). */
+   for help texts and menus, what the policy needs (meshfix_policy_info:
+   positions, the caller's normals, the SDF callback, the up axis), how it
+   decides and what its confidence is. How it decides: PATCH, each patch
+   by its own rule; SHELLS, units of patches weighed against their winding
+   as given, with rays drawn on options.visibility's budget only until each
+   verdict is settled; MERGE, VISIBILITY's greedy merge, which casts its
+   whole budget. SHELLS and MERGE cast rays (meshfix_policy_info's
+   casts_rays). Its confidence: PROBABILITY, a fitted probability that the
+   verdict is right; MARGIN, the margin of its evidence (the report's
+   doubtful bar, meshfix_doubtful_below, is 0.9 for the one, 0.5 for the
+   other, or min_confidence where higher). */
 #define MESHFIX_POLICY_LIST(X) \
     X(MESHFIX_POLICY_AUTO, "auto", "the evidence decides: closed shells out (cavities in), open parts by the " \
       "shells around them, their own crossings and escaping rays, the caller's normals when given; no evidence, " \
-      "no flip (majority without positions)", 0, 0, 0, 0, 1) \
-    X(MESHFIX_POLICY_SEED, "seed", "each patch's lowest triangle keeps its winding (the plain flood fill)", 0, 0, 0, 0, 0) \
-    X(MESHFIX_POLICY_MAJORITY, "majority", "each patch turns to the side that flips less area (or fewer triangles)", 0, 0, 0, 0, 0) \
-    X(MESHFIX_POLICY_OUTWARD, "outward", "auto with the open parts by majority", 1, 0, 0, 0, 1) \
-    X(MESHFIX_POLICY_SDF, "sdf", "along the gradient of options.sdf.distance", 1, 0, 1, 0, 0) \
-    X(MESHFIX_POLICY_VISIBILITY, "visibility", "Borodin et al.: boundary coherence, ray-sampled visibility, greedy merge", 1, 0, 0, 0, 1) \
-    X(MESHFIX_POLICY_UP, "up", "each patch faces the side its normal leans to along the up axis (options.up): terrain, floors", 1, 0, 0, 1, 0) \
-    X(MESHFIX_POLICY_NORMALS, "normals", "each patch faces the way the caller's normals say", 1, 1, 0, 0, 0)
+      "no flip (majority without positions)", 0, 0, 0, 0, SHELLS, PROBABILITY) \
+    X(MESHFIX_POLICY_SEED, "seed", "each patch's lowest triangle keeps its winding (the plain flood fill)", 0, 0, 0, 0, PATCH, MARGIN) \
+    X(MESHFIX_POLICY_MAJORITY, "majority", "each patch turns to the side that flips less area (or fewer triangles)", 0, 0, 0, 0, PATCH, MARGIN) \
+    X(MESHFIX_POLICY_OUTWARD, "outward", "auto with the open parts by majority", 1, 0, 0, 0, SHELLS, MARGIN) \
+    X(MESHFIX_POLICY_SDF, "sdf", "along the gradient of options.sdf.distance", 1, 0, 1, 0, PATCH, MARGIN) \
+    X(MESHFIX_POLICY_VISIBILITY, "visibility", "Borodin et al.: boundary coherence, ray-sampled visibility, greedy merge", 1, 0, 0, 0, MERGE, MARGIN) \
+    X(MESHFIX_POLICY_UP, "up", "each patch faces the side its normal leans to along the up axis (options.up): terrain, floors", 1, 0, 0, 1, PATCH, MARGIN) \
+    X(MESHFIX_POLICY_NORMALS, "normals", "each patch faces the way the caller's normals say", 1, 1, 0, 0, PATCH, MARGIN)
 
-#define MESHFIX__POLICY_ENUM(name, text, line, positions, normals, distance, up, rays) name,
+#define MESHFIX__POLICY_ENUM(name, text, line, positions, normals, distance, up, decides, confidence) name,
 typedef enum meshfix_policy {
     MESHFIX_POLICY_LIST(MESHFIX__POLICY_ENUM)
     MESHFIX_POLICY_COUNT
@@ -814,6 +822,35 @@ MESHFIX__PRIVATE void meshfix__chunk_range(const meshfix__stage *s, size_t chunk
     *begin = meshfix__chunk_start(s->n, chunk, s->chunks);
     *end = meshfix__chunk_start(s->n, chunk + 1, s->chunks);
 }
+
+/* ===== >>policies ===== */
+
+/* A policy's traits, from MESHFIX_POLICY_LIST: what it needs from the
+   caller and whether it casts rays (meshfix__policies, the public
+   meshfix_policy_info's), how it decides and what its confidence is
+   (meshfix__traits). The setup and the pipeline's choice of stages ask
+   these tables; what a policy weighs is its own rule (>>decide:
+   meshfix__decide_patch, meshfix__decide_unit). */
+#define MESHFIX__DECIDE_PATCH 0  /* each patch by its own rule (meshfix__decide_patch) */
+#define MESHFIX__DECIDE_SHELLS 1 /* units weighed against the prior (meshfix__decide_by_shells) */
+#define MESHFIX__DECIDE_MERGE 2  /* VISIBILITY's greedy merge (meshfix__decide_by_visibility) */
+#define MESHFIX__CONFIDENCE_MARGIN 0
+#define MESHFIX__CONFIDENCE_PROBABILITY 1
+
+#define MESHFIX__POLICY_FACTS(name, text, line, positions, normals, distance, up, decides, confidence) \
+    {text, line, positions, normals, distance, up, MESHFIX__DECIDE_##decides != MESHFIX__DECIDE_PATCH},
+static const meshfix_policy_facts meshfix__policies[MESHFIX_POLICY_COUNT] = {MESHFIX_POLICY_LIST(MESHFIX__POLICY_FACTS)};
+#undef MESHFIX__POLICY_FACTS
+
+typedef struct meshfix__policy_traits {
+    int decides;    /* MESHFIX__DECIDE_* */
+    int confidence; /* MESHFIX__CONFIDENCE_* */
+} meshfix__policy_traits;
+
+#define MESHFIX__POLICY_TRAITS(name, text, line, positions, normals, distance, up, decides, confidence) \
+    {MESHFIX__DECIDE_##decides, MESHFIX__CONFIDENCE_##confidence},
+static const meshfix__policy_traits meshfix__traits[MESHFIX_POLICY_COUNT] = {MESHFIX_POLICY_LIST(MESHFIX__POLICY_TRAITS)};
+#undef MESHFIX__POLICY_TRAITS
 
 /* ===== >>memory ===== */
 
@@ -8912,15 +8949,6 @@ MESHFIX__PRIVATE void meshfix__debug_check_orientation(const meshfix__mesh *m)
 #endif
 
 /* ===== >>pipeline ===== */
-
-/* What each policy needs from the caller, and whether it decides by units,
-   trees and rays (the public list): the setup and the pipeline's choice
-   of stages ask this table; what a policy weighs is its own rule
-   (>>decide: meshfix__decide_patch, meshfix__decide_unit). */
-#define MESHFIX__POLICY_FACTS(name, text, line, positions, normals, distance, up, rays) \
-    {text, line, positions, normals, distance, up, rays},
-static const meshfix_policy_facts meshfix__policies[MESHFIX_POLICY_COUNT] = {MESHFIX_POLICY_LIST(MESHFIX__POLICY_FACTS)};
-#undef MESHFIX__POLICY_FACTS
 
 MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, const meshfix__plan *plan,
                                     const meshfix__input *in, size_t vertex_range, const meshfix_options *options,

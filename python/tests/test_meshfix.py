@@ -126,14 +126,16 @@ def test_result_names_are_the_headers():
 
 
 def header_policies():
-    """MESHFIX_POLICY_LIST as the header writes it: (enum name, name, description, the five flags)."""
+    """MESHFIX_POLICY_LIST as the header writes it: (enum name, name, description, the five flags
+    of PolicyInfo). The list's four needs are flags; a policy casts rays unless it decides by PATCH
+    (the list's last two columns, how it decides and its confidence, are the library's own)."""
     with open(os.path.join(ROOT, "meshfix.h")) as f:
         body = re.search(r"#define MESHFIX_POLICY_LIST\(X\)(.*?)\n\n", f.read(), re.S).group(1)
     rows = []
-    for enum_name, name, text, flags in re.findall(
-            r'X\(MESHFIX_POLICY_(\w+), "(\w+)", ((?:"[^"]*"\s*\\?\s*)+), ([01, ]+)\)', body):
+    for enum_name, name, text, flags, decides, _ in re.findall(
+            r'X\(MESHFIX_POLICY_(\w+), "(\w+)", ((?:"[^"]*"\s*\\?\s*)+), ([01, ]+), (\w+), (\w+)\)', body):
         rows.append((enum_name, name, "".join(re.findall(r'"([^"]*)"', text)),
-                     tuple(bool(int(x)) for x in flags.split(","))))
+                     tuple(bool(int(x)) for x in flags.split(",")) + (decides != "PATCH",)))
     return rows
 
 
