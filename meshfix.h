@@ -828,9 +828,16 @@ MESHFIX__PRIVATE void meshfix__chunk_range(const meshfix__stage *s, size_t chunk
 /* A policy's traits, from MESHFIX_POLICY_LIST: what it needs from the
    caller and whether it casts rays (meshfix__policies, the public
    meshfix_policy_info's), how it decides and what its confidence is
-   (meshfix__traits). The setup and the pipeline's choice of stages ask
-   these tables; what a policy weighs is its own rule (>>decide:
-   meshfix__decide_patch, meshfix__decide_unit). */
+   (meshfix__traits). The pipeline asks these two tables; it names a
+   policy in two kinds of places only. meshfix__decide_patch, the one
+   function that applies each patch-by-patch policy's own rule (SEED,
+   MAJORITY, SDF, UP, NORMALS), switches on it. And AUTO has rules of its
+   own: without positions it runs as MAJORITY (meshfix__resolve_policy),
+   and the shells decision tells it from OUTWARD (meshfix__decide_by_shells,
+   meshfix__shell_evidence, meshfix__fit_row, and meshfix__decide_patch
+   for one closed shell alone): OUTWARD is AUTO without the evidence of
+   open parts, the reversed scene, the weaker nesting vote of a shell
+   wound one way as given and the fitted confidence. */
 #define MESHFIX__DECIDE_PATCH 0  /* each patch by its own rule (meshfix__decide_patch) */
 #define MESHFIX__DECIDE_SHELLS 1 /* units weighed against the prior (meshfix__decide_by_shells) */
 #define MESHFIX__DECIDE_MERGE 2  /* VISIBILITY's greedy merge (meshfix__decide_by_visibility) */
@@ -2901,7 +2908,7 @@ MESHFIX__PRIVATE void meshfix__sum_patch(meshfix__mesh *m, unsigned int patch, m
                   a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
         s->area += area;
         s->volume_given += volume;
-        if (m->policy == MESHFIX_POLICY_SDF) {
+        if (m->policy >= 0 && meshfix__policies[m->policy].needs_distance) {
             int vote = meshfix__sdf_vote(m, t, origin, a, b, c, n, &s->sdf_evaluations);
             s->sdf_vote += (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ? -vote * area : vote * area;
         }
@@ -8032,16 +8039,18 @@ MESHFIX__PRIVATE int meshfix__sample_escape(const meshfix__geometry *g, unsigned
 }
 /* ===== >>decide ===== */
 
-/* A patch's turn, start to end. The policy's traits (meshfix__policies)
-   say whether it needs the geometric stage. If it does (AUTO, OUTWARD,
-   VISIBILITY), meshfix__decide_by_geometry (>>geometry) forms units,
-   gathers their evidence (>>members, >>evidence) and decides each unit
+/* A patch's turn, start to end. The policy's traits (>>policies) say
+   whether it needs the geometric stage and how it decides there. If it
+   does (the shells: AUTO, OUTWARD; the merge: VISIBILITY),
+   meshfix__decide_by_geometry (>>geometry) forms units, gathers their
+   evidence (>>members, >>evidence) and decides each unit
    (meshfix__decide_unit, or VISIBILITY's merge); meshfix__apply_units
    writes every member's turn, confidence and evidence once, with
    meshfix__decide. Then, for every policy, meshfix__patch_verdict reads
    that decision or, for the policies that decide patch by patch (SEED,
    MAJORITY, SDF, UP, NORMALS, and one closed shell alone), makes it with
-   meshfix__decide_patch; min_confidence is applied there, and only there;
+   meshfix__decide_patch, which switches on the policy to apply its own
+   rule; min_confidence is applied there, and only there;
    meshfix__turn_patch marks the triangles. The report (>>report) counts
    what was decided and never decides. */
 
@@ -8195,7 +8204,7 @@ MESHFIX__PRIVATE size_t meshfix__turn_patch(meshfix__mesh *m, unsigned int p, in
     for (i = m->patch_start[p]; i < m->patch_start[p + 1]; ++i) {
         unsigned int t = m->queue[i];
         unsigned int flip = (m->tri_bits[t] & MESHFIX__TRI_RELATIVE) ^ turn;
-        if (policy == MESHFIX_POLICY_SDF)
+        if (meshfix__policies[policy].needs_distance)
             flip = meshfix__sdf_flip(m, t, flip, r);
         m->tri_bits[t] = (unsigned short)(m->tri_bits[t] | (flip ? MESHFIX__TRI_FLIP : 0u));
         flipped += flip;
@@ -8550,7 +8559,7 @@ MESHFIX__PRIVATE size_t meshfix__ray_budget(const meshfix__mesh *m)
         return budget;
     if (m->triangle_count < 1024)
         return 64 * m->triangle_count;
-    if (m->policy != MESHFIX_POLICY_VISIBILITY)
+    if (meshfix__traits[m->policy].decides != MESHFIX__DECIDE_MERGE)
         return 1048576;
     budget = 128 * (size_t)m->patch_count;
     return budget < 65536 ? 65536 : budget > 1048576 ? 1048576 : budget;
@@ -8588,7 +8597,7 @@ MESHFIX__PRIVATE int meshfix__place_nodes(size_t *total, meshfix__span *span, si
 MESHFIX__PRIVATE int meshfix__plan_geometry(const meshfix__geometry_counts *c, int policy, meshfix__geometry_plan *l)
 {
     size_t t = 0, n = c->triangles, p = c->patches, b = c->boundary, pairs = c->boundary + c->rings;
-    size_t ring = c->largest_ring, vis = policy == MESHFIX_POLICY_VISIBILITY ? p : 0, rest = p - vis;
+    size_t ring = c->largest_ring, vis = meshfix__traits[policy].decides == MESHFIX__DECIDE_MERGE ? p : 0, rest = p - vis;
     int ok = meshfix__place(&t, &l->confidence, p, sizeof(float)) && meshfix__place(&t, &l->patch_kind, p, 1) &&
              meshfix__place(&t, &l->patch_unit, p, sizeof(unsigned int)) && meshfix__place(&t, &l->patch_turn, p, 1) &&
              meshfix__place(&t, &l->triangle_unit, n, sizeof(unsigned int)) &&
@@ -8660,7 +8669,8 @@ MESHFIX__PRIVATE int meshfix__decide_by_geometry(meshfix__mesh *m, const meshfix
         return 0;
     meshfix__fit_frame(&g.bvh, m);
     g.t_min = (float)(1e-5 * g.bvh.diagonal);
-    return policy == MESHFIX_POLICY_VISIBILITY ? meshfix__decide_by_visibility(&g, r) : meshfix__decide_by_shells(&g, r);
+    return meshfix__traits[policy].decides == MESHFIX__DECIDE_MERGE ? meshfix__decide_by_visibility(&g, r)
+                                                                     : meshfix__decide_by_shells(&g, r);
 }
 
 /* ===== >>report ===== */
@@ -8787,15 +8797,18 @@ MESHFIX__PRIVATE void meshfix__add_patch_to_component(const meshfix__mesh *m, un
 
 
 /* A verdict is doubtful below this confidence, or below min_confidence
-   where that is higher. AUTO's confidence is a probability: below 0.9 a
-   verdict is wrong more than once in ten. The other policies' is the
-   margin of their evidence, doubtful below half. */
+   where that is higher. A fitted probability (AUTO's: the policy's
+   confidence trait, >>policies): below 0.9 a verdict is wrong more than
+   once in ten. The other policies' is the margin of their evidence,
+   doubtful below half. */
 #define MESHFIX__DOUBTFUL_PROBABILITY 0.9
 #define MESHFIX__DOUBTFUL_MARGIN 0.5
 
 MESHFIX__PRIVATE double meshfix__doubtful_below(const meshfix_options *o, int policy)
 {
-    double bar = policy == MESHFIX_POLICY_AUTO ? MESHFIX__DOUBTFUL_PROBABILITY : MESHFIX__DOUBTFUL_MARGIN;
+    int probability = policy >= 0 && policy < (int)MESHFIX_POLICY_COUNT &&
+                      meshfix__traits[policy].confidence == MESHFIX__CONFIDENCE_PROBABILITY;
+    double bar = probability ? MESHFIX__DOUBTFUL_PROBABILITY : MESHFIX__DOUBTFUL_MARGIN;
     return meshfix__maxd(bar, (double)o->evidence.min_confidence);
 }
 
@@ -8899,15 +8912,16 @@ MESHFIX__PRIVATE void meshfix__sums_chunk(void *stage, size_t chunk)
 /* Each patch: its sums, then in patch order its verdict and the report.
    The sums are taken a window of patches at a time in the join's room,
    when it is free (positions joined the corners), in chunks a caller's
-   parallel_for may run, except for SDF (its callbacks were not promised
-   to be reentrant); else each where it is used. */
+   parallel_for may run, except under a policy that calls
+   options.sdf.distance (SDF: its callbacks were not promised to be
+   reentrant); else each where it is used. */
 MESHFIX__PRIVATE void meshfix__orient_patches(meshfix__mesh *m, int policy, const meshfix_options *o,
                                               meshfix_report *r)
 {
     unsigned int p, c, window = 0;
     meshfix__sums_task task;
     MESHFIX_MEMSET(m->component_bits, 0, m->component_count);
-    if (m->input_room != NULL && policy != MESHFIX_POLICY_SDF)
+    if (m->input_room != NULL && (policy < 0 || !meshfix__policies[policy].needs_distance))
         window = (unsigned int)(3 * m->triangle_count / (sizeof(meshfix__patch_sums) / sizeof(unsigned int)));
     task.m = m;
     task.sums = (meshfix__patch_sums *)(void *)m->input_room;
@@ -8976,16 +8990,17 @@ MESHFIX__PRIVATE void meshfix__bind(meshfix__mesh *m, unsigned char *block, cons
     m->input_room = meshfix__joins_positions(in) ? (unsigned int *)(void *)(block + plan->weld) : NULL;
 }
 
-/* The geometric policies build units, trees and rays, except for one
-   closed shell alone under AUTO and OUTWARD: nothing can enclose it, its
-   volume decides. */
+/* The policies that cast rays build units and trees, except for one
+   closed shell alone under the shells decision (AUTO, OUTWARD): nothing
+   can enclose it, its volume decides (meshfix__decide_patch). */
 MESHFIX__PRIVATE int meshfix__needs_geometry(const meshfix__mesh *m, int policy)
 {
     if (policy < 0 || !meshfix__policies[policy].casts_rays)
         return 0;
-    if (policy == MESHFIX_POLICY_VISIBILITY)
-        return m->patch_count != 0;
-    return m->patch_count > 1 || (m->patch_count == 1 && !meshfix__is_closed_orientable(m, 0));
+    if (meshfix__traits[policy].decides == MESHFIX__DECIDE_SHELLS && m->patch_count == 1 &&
+        meshfix__is_closed_orientable(m, 0))
+        return 0;
+    return m->patch_count != 0;
 }
 
 /* meshfix_check's explanation (>>check) */
@@ -9063,7 +9078,7 @@ MESHFIX__PRIVATE meshfix_result meshfix__analyze(meshfix__mesh *m, int policy, c
     m->patch_kind = NULL;
 #ifdef MESHFIX_DEBUG
     /* the plain per-triangle SDF rule does not promise consistency */
-    if (policy >= 0 && !(policy == MESHFIX_POLICY_SDF && o->sdf.mode == MESHFIX_SDF_PER_TRIANGLE))
+    if (policy >= 0 && !(meshfix__policies[policy].needs_distance && o->sdf.mode == MESHFIX_SDF_PER_TRIANGLE))
         meshfix__debug_check_orientation(m);
 #endif
     if (!full)
