@@ -8039,18 +8039,16 @@ MESHFIX__PRIVATE int meshfix__sample_escape(const meshfix__geometry *g, unsigned
 }
 /* ===== >>decide ===== */
 
-/* A patch's turn, start to end. The policy's traits (>>policies) say
-   whether it needs the geometric stage and how it decides there. If it
-   does (the shells: AUTO, OUTWARD; the merge: VISIBILITY),
-   meshfix__decide_by_geometry (>>geometry) forms units, gathers their
-   evidence (>>members, >>evidence) and decides each unit
+/* A patch's turn, start to end. The policy's traits (meshfix__policies)
+   say whether it needs the geometric stage. If it does (AUTO, OUTWARD,
+   VISIBILITY), meshfix__decide_by_geometry (>>geometry) forms units,
+   gathers their evidence (>>members, >>evidence) and decides each unit
    (meshfix__decide_unit, or VISIBILITY's merge); meshfix__apply_units
    writes every member's turn, confidence and evidence once, with
    meshfix__decide. Then, for every policy, meshfix__patch_verdict reads
    that decision or, for the policies that decide patch by patch (SEED,
    MAJORITY, SDF, UP, NORMALS, and one closed shell alone), makes it with
-   meshfix__decide_patch, which switches on the policy to apply its own
-   rule; min_confidence is applied there, and only there;
+   meshfix__decide_patch; min_confidence is applied there, and only there;
    meshfix__turn_patch marks the triangles. The report (>>report) counts
    what was decided and never decides. */
 
