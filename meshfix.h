@@ -6165,8 +6165,7 @@ MESHFIX__PRIVATE size_t meshfix__grid_buckets(size_t segments)
 /* The grid over chunks of segments (from MESHFIX__PARALLEL_UNIT
    segments on), a meshfix__sort_buckets whose partitions cover whole
    bytes of `occupied`: a bucket ends with the entries one pass gives it,
-   in the same order. `entries` is scratch for 9 unsigned ints per
-   segment. */
+   in the same order. */
 typedef struct meshfix__grid_task {
     meshfix__grid *grid;
     const meshfix__segment *segments;
@@ -6215,7 +6214,9 @@ MESHFIX__PRIVATE void meshfix__grid_occupied(const meshfix__bucket_sort *s, size
 }
 
 /* The grid's buckets and items over chunks (grid->start and occupied
-   zeroed, grid->cell, mask and items set). */
+   zeroed, grid->cell, mask and items set). `entries`: scratch for 9
+   unsigned ints per segment (each segment's buckets, then the sort's
+   entries: a bucket and an item each). */
 MESHFIX__PRIVATE void meshfix__index_in_chunks(const meshfix_options *o, meshfix__grid *grid, const meshfix__segment *segments,
                                               unsigned int n, double reach, double beyond, unsigned int *entries)
 {
